@@ -1,0 +1,62 @@
+// The scene model: convex one-sided patches with a diffuse material each. What every stage reads.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "geometry/convex_polygon.h"
+#include "geometry/tolerance.h"
+
+namespace gv {
+
+/// Linear RGB triple (reflectance in [0,1] per channel, or radiosity / emission >= 0).
+struct Rgb {
+  double r = 0, g = 0, b = 0;
+  constexpr bool operator==(const Rgb&) const = default;
+  constexpr bool isBlack() const { return r == 0 && g == 0 && b == 0; }
+};
+
+/// A diffuse material. `reflectance` is MTL's Kd, `emission` MTL's Ke (emitted radiosity).
+struct Material {
+  std::string name;
+  Rgb reflectance{0.5, 0.5, 0.5};
+  Rgb emission{};
+  bool isEmitter() const { return !emission.isBlack(); }
+};
+
+/// Sentinel for patches that come from no input face (made by a generator).
+inline constexpr uint32_t kNoSourceFace = UINT32_MAX;
+
+/// A patch: a convex planar one-sided polygon (front = counter-clockwise side) with a material.
+struct Patch {
+  ConvexPolygon polygon;
+  uint32_t material = 0;              ///< index into Scene::materials
+  uint32_t sourceFace = kNoSourceFace;  ///< 0-based index of the input face it came from
+};
+
+/// What import did to the input faces; reported by `globalvis info`.
+struct ImportReport {
+  size_t facesIn = 0;
+  size_t droppedDegenerate = 0;   ///< zero area, repeated or collinear vertices
+  size_t splitNonConvex = 0;      ///< planar non-convex faces decomposed into convex pieces
+  size_t triangulatedNonPlanar = 0;  ///< faces beyond the planarity tolerance, triangulated
+  std::vector<std::string> warnings;
+};
+
+/// The scene: patches and the materials they index. Patch ids are indices into `patches`.
+struct Scene {
+  std::vector<Patch> patches;
+  std::vector<Material> materials;
+  ImportReport report;
+
+  Aabb bounds() const;
+  /// The scene's tolerance policy instance (see geometry/tolerance.h).
+  Tolerance tolerance() const { return Tolerance::forBounds(bounds()); }
+  double totalArea() const;
+  size_t emitterCount() const;  ///< patches whose material emits
+  /// Adds a material and returns its index.
+  uint32_t addMaterial(Material m);
+};
+
+}  // namespace gv
