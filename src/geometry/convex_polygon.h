@@ -22,6 +22,11 @@ struct ConvexPolygon {
   /// Returns nullopt when fewer than 3 distinct vertices remain or the polygon has zero width
   /// (twice its area over its longest edge below tol.length()).
   static std::optional<ConvexPolygon> fromVertices(std::vector<Vec3> vertices, const Tolerance& tol);
+  /// As `fromVertices`, but keeps `plane` (whose front the vertices must be counter-clockwise
+  /// from) instead of refitting one: pieces of a split polygon and faces of a cell stay exactly on
+  /// their support plane, so repeated splitting never drifts the plane.
+  static std::optional<ConvexPolygon> fromVerticesInPlane(std::vector<Vec3> vertices,
+                                                          const Plane& plane, const Tolerance& tol);
 
   double area() const;
   Vec3 centroid() const;  ///< area centroid
