@@ -1,0 +1,31 @@
+// Turning one input face (any polygon) into convex planar patches: the import rules of issue #2.
+#pragma once
+
+#include <vector>
+
+#include "geometry/convex_polygon.h"
+#include "geometry/tolerance.h"
+
+namespace gv {
+
+/// What happened to one face.
+enum class FaceOutcome {
+  Convex,        ///< planar and convex: one patch
+  SplitConvex,   ///< planar, not convex: split into convex pieces along diagonals
+  Triangulated,  ///< not planar within tolerance: triangulated
+  Degenerate,    ///< fewer than 3 distinct vertices, zero area, or nothing usable left: dropped
+};
+
+struct FacePatches {
+  FaceOutcome outcome = FaceOutcome::Degenerate;
+  std::vector<ConvexPolygon> pieces;  ///< each with the face's orientation (front = CCW side)
+};
+
+/// Converts a face given counter-clockwise as seen from its front. A face is planar when every
+/// vertex lies within kRelativeModelEpsilon × (face diameter) of its Newell plane. Planar
+/// non-convex simple faces are partitioned into convex pieces (Hertel–Mehlhorn, via CGAL);
+/// self-intersecting faces are fan-triangulated and the triangles that face backwards dropped.
+/// Vertices of the output are input vertices: nothing is moved or re-projected.
+FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol);
+
+}  // namespace gv

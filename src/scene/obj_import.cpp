@@ -1,0 +1,149 @@
+// Wavefront OBJ + MTL import through tinyobjloader (double precision build), after a precheck
+// that gives bad input a file:line message. Faces become convex patches (face_to_patches.h).
+#include <tiny_obj_loader.h>
+
+#include <filesystem>
+#include <set>
+#include <fstream>
+#include <sstream>
+
+#include "scene/face_to_patches.h"
+#include "scene/input_error.h"
+#include "scene/obj_precheck.h"
+#include "scene/scene_io.h"
+
+namespace gv {
+namespace fs = std::filesystem;
+namespace {
+
+std::string readWholeFile(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw InputError(path, 0, "file not found");
+  if (fs::is_directory(path, ec)) throw InputError(path, 0, "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot be opened for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw InputError(path, 0, "read error");
+  return ss.str();
+}
+
+/// Checks each referenced MTL library and returns their concatenated text. Missing → warning
+/// (grey default); present but unreadable or malformed → InputError.
+std::string readMaterialLibraries(const std::string& objPath, const std::vector<MtlReference>& libs,
+                                  ImportReport& report) {
+  std::string all;
+  const fs::path dir = fs::path(objPath).parent_path();
+  for (const MtlReference& lib : libs) {
+    const fs::path mtl = dir / lib.name;
+    std::error_code ec;
+    if (!fs::exists(mtl, ec)) {
+      report.warnings.push_back(objPath + ":" + std::to_string(lib.line) + ": material library '" +
+                                lib.name + "' not found; its materials become grey 0.5 without emission");
+      continue;
+    }
+    std::string text;
+    try {
+      text = readWholeFile(mtl.string());
+    } catch (const InputError& e) {
+      throw InputError(objPath, lib.line, std::string("material library unreadable: ") + e.what());
+    }
+    for (std::string& w : precheckMtl(mtl.string(), text)) report.warnings.push_back(std::move(w));
+    all += text;
+    all += '\n';
+  }
+  return all;
+}
+
+Rgb toRgb(const tinyobj::real_t c[3]) { return {c[0], c[1], c[2]}; }
+
+std::vector<std::string> splitLines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) out.push_back(line);
+  return out;
+}
+
+}  // namespace
+
+Scene importObj(const std::string& path) {
+  const std::string text = readWholeFile(path);
+  Scene scene;
+  const std::vector<MtlReference> libs = precheckObj(path, text);
+  const std::string mtlText = readMaterialLibraries(path, libs, scene.report);
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // keep polygons: the patch rules decide about splitting
+  config.vertex_color = false;
+  config.mtl_search_path = fs::path(path).parent_path().string();
+  tinyobj::ObjReader reader;
+  // With MTL text given, tinyobjloader resolves every `usemtl` against it (all libraries at once).
+  if (!reader.ParseFromString(text, mtlText, config))
+    throw InputError(path, 0, "OBJ parse error: " + reader.Error());
+  std::set<std::string> seen;  // tinyobjloader repeats a warning at every `usemtl`
+  for (const std::string& w : splitLines(reader.Warning()))
+    if (w.find("not found") != std::string::npos && seen.insert(w).second)
+      scene.report.warnings.push_back(path + ": " + w + " (grey 0.5 used)");
+  const std::vector<tinyobj::material_t>& materials = reader.GetMaterials();
+
+  for (const tinyobj::material_t& m : materials)
+    scene.addMaterial({m.name, toRgb(m.diffuse), toRgb(m.emission)});
+  uint32_t defaultMaterial = UINT32_MAX;  // added on first use
+
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  Aabb box;
+  for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
+    box.add({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
+  const Tolerance tol = Tolerance::forBounds(box);
+
+  uint32_t faceIndex = 0;
+  ImportReport& report = scene.report;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const tinyobj::mesh_t& mesh = shape.mesh;
+    size_t offset = 0;
+    for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f, ++faceIndex) {
+      const size_t count = mesh.num_face_vertices[f];
+      std::vector<Vec3> face;
+      face.reserve(count);
+      for (size_t k = 0; k < count; ++k) {
+        const int vi = mesh.indices[offset + k].vertex_index;
+        const size_t base = 3 * static_cast<size_t>(vi);
+        face.push_back({attrib.vertices[base], attrib.vertices[base + 1], attrib.vertices[base + 2]});
+      }
+      offset += count;
+      ++report.facesIn;
+      const FacePatches converted = faceToPatches(face, tol);
+      switch (converted.outcome) {
+        case FaceOutcome::Degenerate: ++report.droppedDegenerate; continue;
+        case FaceOutcome::SplitConvex: ++report.splitNonConvex; break;
+        case FaceOutcome::Triangulated: ++report.triangulatedNonPlanar; break;
+        case FaceOutcome::Convex: break;
+      }
+      const int mid = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
+      uint32_t material;
+      if (mid >= 0 && static_cast<size_t>(mid) < materials.size()) {
+        material = static_cast<uint32_t>(mid);
+      } else {
+        if (defaultMaterial == UINT32_MAX) defaultMaterial = scene.addMaterial({"default_grey", {0.5, 0.5, 0.5}, {}});
+        material = defaultMaterial;
+      }
+      for (const ConvexPolygon& piece : converted.pieces)
+        scene.patches.push_back({piece, material, faceIndex});
+    }
+  }
+  if (scene.patches.empty())
+    throw InputError(path, 0, report.facesIn == 0 ? "the scene has no faces"
+                                                  : "the scene has no usable face (all " +
+                                                        std::to_string(report.facesIn) + " are degenerate)");
+  return scene;
+}
+
+Scene loadScene(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".obj") return importObj(path);
+  throw InputError(path, 0, "unsupported scene format '" + ext + "' (supported: .obj)");
+}
+
+}  // namespace gv

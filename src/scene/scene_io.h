@@ -1,0 +1,25 @@
+// Reading and writing scenes: Wavefront OBJ + MTL (Kd = reflectance, Ke = emission).
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace gv {
+
+/// Loads a scene file, choosing the reader by extension (.obj). Faces become convex patches by
+/// the rules of face_to_patches.h; `Scene::report` tells what happened to them. Throws InputError
+/// (naming file and line) on unreadable or malformed input, non-finite coordinates, bad indices,
+/// faces with fewer than 3 vertices, or a scene with no usable face.
+Scene loadScene(const std::string& path);
+
+/// Reads Wavefront OBJ with its MTL libraries (looked up beside the OBJ). A missing MTL gives a
+/// warning and grey 0.5 without emission; a present but unreadable or malformed MTL is an error.
+Scene importObj(const std::string& path);
+
+/// Writes the patches as OBJ (face k = patch k, vertices counter-clockwise seen from the front)
+/// and its MTL beside it (same name, .mtl), one material per scene material with Kd and Ke.
+/// Throws InputError when a file cannot be written.
+void writeObj(const Scene& scene, const std::string& objPath);
+
+}  // namespace gv
