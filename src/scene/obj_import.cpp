@@ -70,8 +70,8 @@ std::vector<std::string> splitLines(const std::string& text) {
 Scene importObj(const std::string& path) {
   const std::string text = readWholeFile(path);
   Scene scene;
-  const std::vector<MtlReference> libs = precheckObj(path, text);
-  const std::string mtlText = readMaterialLibraries(path, libs, scene.report);
+  const ObjPrecheck pre = precheckObj(path, text);
+  const std::string mtlText = readMaterialLibraries(path, pre.libraries, scene.report);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // keep polygons: the patch rules decide about splitting
@@ -91,10 +91,8 @@ Scene importObj(const std::string& path) {
     scene.addMaterial({m.name, toRgb(m.diffuse), toRgb(m.emission)});
   uint32_t defaultMaterial = UINT32_MAX;  // added on first use
 
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   Aabb box;
-  for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
-    box.add({attrib.vertices[i], attrib.vertices[i + 1], attrib.vertices[i + 2]});
+  for (const Vec3& p : pre.vertices) box.add(p);
   const Tolerance tol = Tolerance::forBounds(box);
 
   uint32_t faceIndex = 0;
@@ -107,9 +105,8 @@ Scene importObj(const std::string& path) {
       std::vector<Vec3> face;
       face.reserve(count);
       for (size_t k = 0; k < count; ++k) {
-        const int vi = mesh.indices[offset + k].vertex_index;
-        const size_t base = 3 * static_cast<size_t>(vi);
-        face.push_back({attrib.vertices[base], attrib.vertices[base + 1], attrib.vertices[base + 2]});
+        // tinyobjloader numbers vertices in file order, as the precheck does.
+        face.push_back(pre.vertices.at(static_cast<size_t>(mesh.indices[offset + k].vertex_index)));
       }
       offset += count;
       ++report.facesIn;

@@ -61,8 +61,8 @@ std::string quoted(std::string_view s) { return "'" + std::string(s) + "'"; }
 
 }  // namespace
 
-std::vector<MtlReference> precheckObj(const std::string& path, const std::string& text) {
-  std::vector<MtlReference> libraries;
+ObjPrecheck precheckObj(const std::string& path, const std::string& text) {
+  ObjPrecheck result;
   long vertexCount = 0;
   struct Pending { long index; size_t line; };
   std::vector<Pending> forward;  // positive indices beyond the vertices read so far
@@ -72,13 +72,15 @@ std::vector<MtlReference> precheckObj(const std::string& path, const std::string
     if (tok[0] == "v") {
       if (tok.size() < 4)
         throw InputError(path, lineNo, "vertex needs 3 coordinates, found " + std::to_string(tok.size() - 1));
-      for (size_t k = 1; k < 4; ++k) {
-        double x = 0;
+      Vec3 p;
+      for (int k = 1; k < 4; ++k) {
+        double& x = p[k - 1];
         if (!parseDouble(tok[k], x))
           throw InputError(path, lineNo, "vertex coordinate " + quoted(tok[k]) + " is not a number");
         if (!std::isfinite(x))
           throw InputError(path, lineNo, "vertex coordinate " + quoted(tok[k]) + " is not finite");
       }
+      result.vertices.push_back(p);
       ++vertexCount;
     } else if (tok[0] == "f") {
       if (tok.size() < 4)
@@ -97,7 +99,7 @@ std::vector<MtlReference> precheckObj(const std::string& path, const std::string
         if (index > vertexCount) forward.push_back({index, lineNo});
       }
     } else if (tok[0] == "mtllib") {
-      for (size_t k = 1; k < tok.size(); ++k) libraries.push_back({std::string(tok[k]), lineNo});
+      for (size_t k = 1; k < tok.size(); ++k) result.libraries.push_back({std::string(tok[k]), lineNo});
     }
   });
   for (const Pending& p : forward)
@@ -105,7 +107,7 @@ std::vector<MtlReference> precheckObj(const std::string& path, const std::string
       throw InputError(path, p.line, "face vertex index " + std::to_string(p.index) +
                                          " is out of range: the file has " +
                                          std::to_string(vertexCount) + " vertices");
-  return libraries;
+  return result;
 }
 
 std::vector<std::string> precheckMtl(const std::string& path, const std::string& text) {

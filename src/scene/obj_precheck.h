@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/vec3.h"
+
 namespace gv {
 
 /// A `mtllib` statement: the library's file name and the OBJ line that names it.
@@ -14,9 +16,16 @@ struct MtlReference {
   size_t line = 0;
 };
 
+/// What the precheck read: vertex positions (correctly rounded, unlike tinyobjloader's fast
+/// parser, which can be 1 ulp off and would break bit-exact round trips) and MTL references.
+struct ObjPrecheck {
+  std::vector<Vec3> vertices;
+  std::vector<MtlReference> libraries;
+};
+
 /// Checks vertex records (3+ finite numbers), face records (3+ vertices, indices in range, never
 /// 0) and collects `mtllib` references. Throws InputError with `path:line` on the first problem.
-std::vector<MtlReference> precheckObj(const std::string& path, const std::string& text);
+ObjPrecheck precheckObj(const std::string& path, const std::string& text);
 
 /// Checks Kd / Ke records of an MTL file: three finite non-negative numbers each. Throws
 /// InputError with `path:line`. Returns warnings (e.g. a reflectance above 1).

@@ -1,0 +1,70 @@
+// The executable end to end: help, info, and bad input ending in a message and a non-zero exit
+// (never a crash: a signal would show as exit code -1 here).
+#include <gtest/gtest.h>
+
+#include "support/run_cli.h"
+#include "support/temp_dir.h"
+
+namespace gv {
+namespace {
+
+using test::runCli;
+
+std::string quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
+
+TEST(Cli, HelpListsTheSubcommands) {
+  const auto r = runCli("help");
+  EXPECT_EQ(r.exitCode, 0);
+  EXPECT_NE(r.output.find("info"), std::string::npos);
+  EXPECT_NE(r.output.find("gen"), std::string::npos);
+}
+
+TEST(Cli, InfoPrintsCounts) {
+  const auto dir = test::scratchDir();
+  const auto obj = dir / "quad.obj";
+  test::writeFile(obj, "v 0 0 0\nv 2 0 0\nv 2 3 0\nv 0 3 0\nf 1 2 3 4\nf 1 1 2\n");
+  const auto r = runCli("info " + quoted(obj));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("faces in     2"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("patches      1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("dropped      1"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("total area   6"), std::string::npos) << r.output;
+}
+
+TEST(CliBadInput, MissingFile) {
+  const auto r = runCli("info /nonexistent/x.obj");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("/nonexistent/x.obj: file not found"), std::string::npos) << r.output;
+}
+
+TEST(CliBadInput, NanCoordinateNamesFileAndLine) {
+  const auto dir = test::scratchDir();
+  const auto obj = dir / "nan.obj";
+  test::writeFile(obj, "v 0 0 0\nv NaN 0 0\nv 0 1 0\nf 1 2 3\n");
+  const auto r = runCli("info " + quoted(obj));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("nan.obj:2:"), std::string::npos) << r.output;
+}
+
+TEST(CliBadInput, EmptyScene) {
+  const auto dir = test::scratchDir();
+  const auto obj = dir / "empty.obj";
+  test::writeFile(obj, "# nothing here\n");
+  const auto r = runCli("info " + quoted(obj));
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find("no faces"), std::string::npos) << r.output;
+}
+
+TEST(CliBadInput, UnknownOptionAndSubcommand) {
+  auto r = runCli("info --frobnicate x.obj");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.output.find("--frobnicate"), std::string::npos) << r.output;
+  r = runCli("frobnicate");
+  EXPECT_EQ(r.exitCode, 1);
+  r = runCli("");
+  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_NE(r.output.find("subcommand"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace gv
