@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
     actions[app.get_subcommands({}).back()] = std::move(action);
   };
   add(gv::cli::addInfoCommand);
-  // gen: registered once the generators land
+  add(gv::cli::addGenCommand);
   CLI::App* help = app.add_subcommand("help", "List the subcommands");
 
   try {
