@@ -20,13 +20,13 @@ Vec3 newellNormal(const std::vector<Vec3>& v) {
 /// within eps of the line through their neighbours (collinear middles and back-tracking spikes).
 /// Repeats the second pass until stable because removing one vertex changes its neighbours' test.
 void cleanVertices(std::vector<Vec3>& v, double eps) {
-  std::vector<Vec3> kept;
-  kept.reserve(v.size());
-  for (const Vec3& p : v) {
-    if (kept.empty() || distance(kept.back(), p) > eps) kept.push_back(p);
+  // In place: this runs on every split piece, so avoid a second allocation.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (kept == 0 || distance(v[kept - 1], v[i]) > eps) v[kept++] = v[i];
   }
-  while (kept.size() > 1 && distance(kept.back(), kept.front()) <= eps) kept.pop_back();
-  v = std::move(kept);
+  while (kept > 1 && distance(v[kept - 1], v[0]) <= eps) --kept;
+  v.resize(kept);
 
   bool changed = true;
   while (changed && v.size() >= 3) {
@@ -149,13 +149,14 @@ PolygonSplit split(const ConvexPolygon& polygon, const Plane& splitter, const To
   const double eps = tol.length();
   const std::size_t n = polygon.vertices.size();
   std::vector<double> dist(n);
-  std::vector<PlaneSide> side(n);
+  auto sideOf = [&](std::size_t i) {
+    return dist[i] > eps ? PlaneSide::Front : (dist[i] < -eps ? PlaneSide::Back : PlaneSide::On);
+  };
   bool anyFront = false, anyBack = false;
   for (std::size_t i = 0; i < n; ++i) {
     dist[i] = splitter.distance(polygon.vertices[i]);
-    side[i] = dist[i] > eps ? PlaneSide::Front : (dist[i] < -eps ? PlaneSide::Back : PlaneSide::On);
-    anyFront |= side[i] == PlaneSide::Front;
-    anyBack |= side[i] == PlaneSide::Back;
+    anyFront |= dist[i] > eps;
+    anyBack |= dist[i] < -eps;
   }
   PolygonSplit out;
   if (!anyFront && !anyBack) {
@@ -177,14 +178,15 @@ PolygonSplit split(const ConvexPolygon& polygon, const Plane& splitter, const To
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
     const Vec3& p = polygon.vertices[i];
-    if (side[i] != PlaneSide::Back) front.push_back(p);
-    if (side[i] != PlaneSide::Front) back.push_back(p);
-    const bool crosses = (side[i] == PlaneSide::Front && side[j] == PlaneSide::Back) ||
-                         (side[i] == PlaneSide::Back && side[j] == PlaneSide::Front);
+    const PlaneSide si = sideOf(i), sj = sideOf(j);
+    if (si != PlaneSide::Back) front.push_back(p);
+    if (si != PlaneSide::Front) back.push_back(p);
+    const bool crosses = (si == PlaneSide::Front && sj == PlaneSide::Back) ||
+                         (si == PlaneSide::Back && sj == PlaneSide::Front);
     if (!crosses) continue;
     // Interpolate always from the front end point so that the two faces sharing this edge (which
     // walk it in opposite directions) compute bit-identical crossing points.
-    const std::size_t f = side[i] == PlaneSide::Front ? i : j;
+    const std::size_t f = si == PlaneSide::Front ? i : j;
     const std::size_t b = f == i ? j : i;
     const double t = dist[f] / (dist[f] - dist[b]);
     const Vec3 x = polygon.vertices[f] + (polygon.vertices[b] - polygon.vertices[f]) * t;
