@@ -1,0 +1,77 @@
+// Building the subdivision (BSP, then portals) and its §7.1 statistics. Paper §3, §7.1.
+#include "bsp/subdivision.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "bsp/portals.h"
+
+namespace gv {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void sortUnique(std::vector<uint32_t>& v) {
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+}
+
+}  // namespace
+
+std::vector<uint32_t> Subdivision::neighbours(uint32_t cell) const {
+  std::vector<uint32_t> out;
+  for (uint32_t p : cells[cell].portals) out.push_back(portals[p].other(cell));
+  sortUnique(out);
+  return out;
+}
+
+Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
+  Subdivision sub;
+  const auto bspStart = std::chrono::steady_clock::now();
+  sub.tree = buildBspTree(scene, options);
+  sub.stats.bspSeconds = secondsSince(bspStart);
+
+  const auto portalStart = std::chrono::steady_clock::now();
+  sub.cells.resize(sub.tree.leaves.size());
+  for (size_t i = 0; i < sub.cells.size(); ++i) {
+    const BspLeaf& leaf = sub.tree.leaves[i];
+    Cell& cell = sub.cells[i];
+    cell.shape = leaf.shape;
+    cell.faces.resize(leaf.shape.faces.size());
+    for (const PatchFragment& f : leaf.interior) cell.interiorPatches.push_back(f.patch);
+    sortUnique(cell.interiorPatches);
+  }
+  buildPortals(sub);
+
+  size_t faces = 0, coaffine = 0;
+  for (Cell& cell : sub.cells) {
+    std::vector<uint32_t> onBoundary;
+    for (const BoundaryFace& face : cell.faces) {
+      onBoundary.insert(onBoundary.end(), face.coaffinePatches.begin(), face.coaffinePatches.end());
+    }
+    sortUnique(onBoundary);
+    coaffine += onBoundary.size();
+    faces += cell.faces.size();
+    cell.patches = onBoundary;
+    cell.patches.insert(cell.patches.end(), cell.interiorPatches.begin(), cell.interiorPatches.end());
+    sortUnique(cell.patches);
+  }
+  sub.stats.portalSeconds = secondsSince(portalStart);
+
+  SubdivisionStats& s = sub.stats;
+  s.patches = scene.patches.size();
+  s.planes = sub.tree.planes.planes().size();
+  s.nodes = sub.tree.nodes.size();
+  s.cells = sub.cells.size();
+  s.portals = sub.portals.size();
+  s.depth = sub.tree.depth;
+  const double n = static_cast<double>(std::max<size_t>(1, s.cells));
+  s.meanFacesPerCell = static_cast<double>(faces) / n;
+  s.meanCoaffinePatchesPerCell = static_cast<double>(coaffine) / n;
+  s.meanPortalsPerCell = 2.0 * static_cast<double>(s.portals) / n;
+  return sub;
+}
+
+}  // namespace gv

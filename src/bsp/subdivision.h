@@ -1,0 +1,84 @@
+// The spatial subdivision: convex cells, the portals between them and the adjacency graph they
+// form — the output of paper §3 that visibility propagation (§4) walks.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "bsp/bsp_tree.h"
+#include "geometry/convex_polygon.h"
+#include "geometry/convex_polyhedron.h"
+#include "scene/scene.h"
+
+namespace gv {
+
+/// What one boundary face of a cell touches. Face i of a cell is `Cell::shape.faces[i]`
+/// (its polygon faces out of the cell); `Cell::faces[i]` describes it.
+struct BoundaryFace {
+  /// The BSP node whose plane holds the face, or -1 for a face of the root box (the world's
+  /// boundary: nothing lies beyond it, no patch touches it, it has no portal).
+  int32_t node = -1;
+  /// Patches coaffine with the face that overlap it (in more than a sliver), either facing,
+  /// sorted. Their union is the opaque part of the face.
+  std::vector<uint32_t> coaffinePatches;
+  /// Portals lying on this face (indices into Subdivision::portals), sorted.
+  std::vector<uint32_t> portals;
+};
+
+/// A leaf cell of the BSP: a convex polyhedron of air (or of a solid's inside).
+struct Cell {
+  ConvexPolyhedron shape;
+  std::vector<BoundaryFace> faces;  ///< parallel to shape.faces
+  /// Patches inside the cell or on its boundary (coaffine with a face), sorted, no repeats.
+  std::vector<uint32_t> patches;
+  /// Patches lying inside the cell rather than on its boundary (left by the stop rule), sorted.
+  std::vector<uint32_t> interiorPatches;
+  std::vector<uint32_t> portals;  ///< portals on the cell's boundary, sorted
+};
+
+/// A portal: a convex transparent part of the boundary between two cells. Its polygon is
+/// counter-clockwise seen from `front`, i.e. its normal points from cell `back` into cell `front`;
+/// it lies in the plane of BSP node `node`, inside a face of each of the two cells, and overlaps
+/// no patch coaffine with those faces (beyond the length tolerance).
+struct Portal {
+  ConvexPolygon polygon;
+  uint32_t back = 0, front = 0;  ///< the two cells it links (back ≠ front)
+  int32_t node = 0;
+  /// The cell on the other side from `cell` (which must be one of the two).
+  uint32_t other(uint32_t cell) const { return cell == back ? front : back; }
+};
+
+/// The paper's §7.1 figures for one subdivision.
+struct SubdivisionStats {
+  size_t patches = 0, planes = 0, nodes = 0, cells = 0, portals = 0;
+  int depth = 0;
+  double meanFacesPerCell = 0;           ///< boundary faces per cell
+  double meanCoaffinePatchesPerCell = 0; ///< distinct patches coaffine with some face, per cell
+  double meanPortalsPerCell = 0;         ///< portals on a cell's boundary, per cell
+  double bspSeconds = 0, portalSeconds = 0;
+};
+
+/// Cells + portals = the adjacency graph over cells: two cells are adjacent iff a portal links
+/// them. Built by `buildSubdivision`.
+struct Subdivision {
+  BspTree tree;
+  std::vector<Cell> cells;  ///< cell i is tree.leaves[i]
+  std::vector<Portal> portals;
+  SubdivisionStats stats;
+
+  /// The cell holding point p (by walking the BSP; a point on a boundary goes to one of its
+  /// cells). p must be inside the root box.
+  uint32_t cellAt(const Vec3& p) const { return tree.leafAt(p); }
+  /// The distinct cells linked to `cell` by a portal, sorted.
+  std::vector<uint32_t> neighbours(uint32_t cell) const;
+};
+
+/// Builds the BSP (buildBspTree) and then the portals: for every node, the faces of the leaves
+/// on its front side are intersected with those on its back side within the node's plane, and the
+/// node's coplanar patch fragments are subtracted from each overlap; the convex pieces left (wider
+/// than the length tolerance) are the portals. Any patch coaffine with a face is opaque there,
+/// whichever way it faces, so a closed solid's inside is never linked to the air around it.
+/// Throws std::invalid_argument for a scene without patches.
+Subdivision buildSubdivision(const Scene& scene, const BspOptions& options = {});
+
+}  // namespace gv
