@@ -267,7 +267,15 @@ BspTree buildBspTree(const Scene& scene, const BspOptions& options) {
   work.cell = std::move(*root);
   work.fragments.reserve(scene.patches.size());
   for (uint32_t i = 0; i < scene.patches.size(); ++i) {
-    work.fragments.push_back({i, tree.planes.of(i).plane, scene.patches[i].polygon});
+    // Fragments live exactly on their merged plane: a patch merged from up to planeOffset away
+    // would otherwise be cut by a tilted splitter along a line shifted from where the cells'
+    // faces (which lie on the merged plane) are cut, leaving slivers of false portal.
+    const PatchPlane& pp = tree.planes.of(i);
+    const Plane& plane = tree.planes.planes()[pp.plane];
+    ConvexPolygon projected{scene.patches[i].polygon.vertices,
+                            pp.facesAlong ? plane : plane.flipped()};
+    for (Vec3& v : projected.vertices) v -= plane.normal * plane.distance(v);
+    work.fragments.push_back({i, pp.plane, std::move(projected)});
   }
   Builder(options, tree).run(std::move(work));
   return tree;

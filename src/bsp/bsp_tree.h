@@ -40,7 +40,9 @@ struct BspOptions {
 struct PatchFragment {
   uint32_t patch = 0;
   uint32_t plane = 0;
-  ConvexPolygon polygon;  ///< the patch's own orientation
+  /// The piece projected onto the merged plane (moved by at most Tolerance::planeOffset()),
+  /// facing as the patch does.
+  ConvexPolygon polygon;
 };
 
 /// A child reference: >= 0 is a node index, < 0 encodes leaf cell `leafOf(child)`.

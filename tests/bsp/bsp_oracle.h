@@ -163,6 +163,9 @@ inline void expectInvariants(const Scene& scene, const Subdivision& sub, uint32_
   Aabb scn = scene.bounds();
   const double scale = scn.diagonal();
   const double margin = 1e-7 * scale;  // far above the library's 1e-9 length tolerance
+  // The library merges planes closer than 1e-5 of the scene (its model tolerance): a patch
+  // within half that of a face must block it, one within twice that may.
+  const double mustOff = 0.5e-5 * scale, mayOff = 2e-5 * scale;
   const Aabb root = cellsBounds(sub);
 
   // 1. The cells' volumes sum to the root box's volume.
@@ -204,13 +207,13 @@ inline void expectInvariants(const Scene& scene, const Subdivision& sub, uint32_
       }
       EXPECT_TRUE(onFace) << "portal " << k << " is not on a face of cell " << cell;
     }
-    const std::vector<uint32_t> coplanar = coplanarPatches(scene, pv, margin);
+    const std::vector<uint32_t> coplanar = coplanarPatches(scene, pv, mustOff);
     for (int i = 0; i < 8; ++i) {
       // Pull samples a little toward the centroid so that they are clear of the edges.
       const Vec3 q = c + (samplePolygon(pv, rng) - c) * 0.999;
       if (insideDepth(pv, q) < margin) continue;
       for (uint32_t patch : coplanar) {
-        EXPECT_FALSE(inPolygon(scene.patches[patch].polygon.vertices, q, margin, 2 * margin))
+        EXPECT_FALSE(inPolygon(scene.patches[patch].polygon.vertices, q, margin, 2 * mustOff))
             << "portal " << k << " overlaps patch " << patch << " at " << q;
       }
     }
@@ -228,7 +231,8 @@ inline void expectInvariants(const Scene& scene, const Subdivision& sub, uint32_
         EXPECT_TRUE(bf.portals.empty());
         continue;
       }
-      const std::vector<uint32_t> coplanar = coplanarPatches(scene, fv, margin);
+      const std::vector<uint32_t> must = coplanarPatches(scene, fv, mustOff);
+      const std::vector<uint32_t> coplanar = coplanarPatches(scene, fv, mayOff);
       double portalArea = 0;
       for (uint32_t p : bf.portals) portalArea += areaOf(sub.portals[p].polygon.vertices);
       const double faceArea = areaOf(fv);
@@ -245,10 +249,13 @@ inline void expectInvariants(const Scene& scene, const Subdivision& sub, uint32_
           loosePortals += inPolygon(sub.portals[p].polygon.vertices, q, -margin, margin);
         }
         bool strictPatch = false, loosePatch = false;
+        for (uint32_t patch : must) {
+          strictPatch = strictPatch || inPolygon(scene.patches[patch].polygon.vertices, q, margin,
+                                                 2 * mustOff);
+        }
         for (uint32_t patch : coplanar) {
-          const auto& v = scene.patches[patch].polygon.vertices;
-          strictPatch = strictPatch || inPolygon(v, q, margin, 2 * margin);
-          loosePatch = loosePatch || inPolygon(v, q, -margin, 2 * margin);
+          loosePatch = loosePatch || inPolygon(scene.patches[patch].polygon.vertices, q, -margin,
+                                               2 * mayOff);
         }
         EXPECT_LE(strictPortals, 1) << "overlapping portals at " << q;
         EXPECT_FALSE(strictPortals > 0 && strictPatch) << "portal over a patch at " << q;
@@ -256,7 +263,8 @@ inline void expectInvariants(const Scene& scene, const Subdivision& sub, uint32_
             << "cell " << ci << " face " << fi << ": point " << q << " neither portal nor patch";
         // Every patch listed as coaffine really is coplanar with the face.
         for (uint32_t patch : bf.coaffinePatches) {
-          EXPECT_TRUE(std::find(coplanar.begin(), coplanar.end(), patch) != coplanar.end());
+          EXPECT_TRUE(std::find(coplanar.begin(), coplanar.end(), patch) != coplanar.end())
+              << "patch " << patch << " listed on cell " << ci << " face " << fi;
         }
       }
     }
