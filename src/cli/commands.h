@@ -12,5 +12,6 @@ using Action = std::function<int()>;
 /// Each adds its subcommand to `app` and returns the action to run when it is chosen.
 Action addInfoCommand(CLI::App& app);
 Action addGenCommand(CLI::App& app);
+Action addCellsCommand(CLI::App& app);
 
 }  // namespace gv::cli

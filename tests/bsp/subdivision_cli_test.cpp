@@ -1,0 +1,58 @@
+// `globalvis cells SCENE -o DIR` end to end: files written, groups per cell and portal, the §7.1
+// figures in stats.json, bad input → exit 2.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/run_cli.h"
+#include "support/temp_dir.h"
+
+namespace gv {
+namespace {
+
+std::string readAll(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+size_t countLines(const std::string& text, const std::string& prefix) {
+  size_t n = 0;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) n += line.rfind(prefix, 0) == 0;
+  return n;
+}
+
+TEST(SubdivisionCli, WritesCellsPortalsAndStats) {
+  const auto dir = test::scratchDir();
+  const std::string obj = (dir / "office.obj").string();
+  auto r = test::runCli("gen office -o '" + obj + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  r = test::runCli("cells '" + obj + "' -o '" + (dir / "out").string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto stats = nlohmann::json::parse(readAll(dir / "out" / "stats.json"));
+  const size_t cells = stats.at("leaf_cells").get<size_t>();
+  const size_t portals = stats.at("portals").get<size_t>();
+  EXPECT_GT(cells, 100u);
+  EXPECT_GT(portals, 100u);
+  EXPECT_GT(stats.at("mean_boundary_faces_per_cell").get<double>(), 4.0);
+  EXPECT_GT(stats.at("mean_coaffine_patches_per_cell").get<double>(), 0.0);
+  EXPECT_GE(stats.at("bsp_seconds").get<double>(), 0.0);
+  EXPECT_GE(stats.at("portal_seconds").get<double>(), 0.0);
+  EXPECT_EQ(countLines(readAll(dir / "out" / "cells.obj"), "g cell_"), cells);
+  const std::string portalObj = readAll(dir / "out" / "portals.obj");
+  EXPECT_EQ(countLines(portalObj, "g portal_"), portals);
+  EXPECT_EQ(countLines(portalObj, "f "), portals);
+}
+
+TEST(SubdivisionCli, MissingSceneIsBadInput) {
+  const auto dir = test::scratchDir();
+  const auto r = test::runCli("cells /nonexistent/x.obj -o '" + (dir / "out").string() + "'");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+}  // namespace
+}  // namespace gv
