@@ -124,16 +124,35 @@ class Builder {
 
   /// True when the group's fragments leave nothing of `section` uncovered (within tolerance).
   bool covers(const ConvexPolygon& section, const Group& g, const Work& work) const {
+    // Largest first: a slab's big face usually covers all at once, leaving nothing to cut.
+    std::vector<uint32_t> members = g.members;
+    std::sort(members.begin(), members.end(), [&](uint32_t a, uint32_t b) {
+      return work.fragments[a].polygon.area() > work.fragments[b].polygon.area();
+    });
     std::vector<ConvexPolygon> rest{section}, next;
-    for (uint32_t i : g.members) {
+    for (uint32_t i : members) {
+      const ConvexPolygon& fragment = work.fragments[i].polygon;
+      const Aabb fb = fragment.bounds();
       next.clear();
-      for (const ConvexPolygon& piece : rest) {
-        subtractCoplanar(piece, work.fragments[i].polygon, tol_, next);
+      for (ConvexPolygon& piece : rest) {
+        if (!overlaps(piece.bounds(), fb)) {
+          next.push_back(std::move(piece));
+        } else {
+          subtractCoplanar(piece, fragment, tol_, next);
+        }
       }
       std::swap(rest, next);
       if (rest.empty()) return true;
     }
     return false;
+  }
+
+  bool overlaps(const Aabb& a, const Aabb& b) const {
+    const double e = tol_.length();
+    for (int k = 0; k < 3; ++k) {
+      if (a.lo[k] > b.hi[k] + e || b.lo[k] > a.hi[k] + e) return false;
+    }
+    return true;
   }
 
   void process(Work work, std::vector<Work>& stack) {
@@ -152,10 +171,19 @@ class Builder {
       Score bestScore;
       const size_t batch = static_cast<size_t>(std::max(1, options_.maxCandidates));
       for (size_t start = 0; start < all.size() && !best; start += batch) {
+        // Score by coverage first; the exact (costly) "covers the whole section" test is run
+        // afterwards, most central first, only on planes whose area could cover it.
+        struct Candidate {
+          const Group* group;
+          ConvexPolygon section;
+          Score score;
+          bool mayCover;
+        };
+        std::vector<Candidate> scored;
         for (size_t k = start; k < std::min(all.size(), start + batch); ++k) {
           const Group& g = all[k];
           const Plane& plane = planes[g.plane];
-          const std::optional<ConvexPolygon> section = sectionOf(work.cell, plane, tol_);
+          std::optional<ConvexPolygon> section = sectionOf(work.cell, plane, tol_);
           if (!section) {
             grazing.push_back(static_cast<uint32_t>(k));
             continue;
@@ -164,15 +192,26 @@ class Builder {
           Score s;
           s.coverage = std::min(1.0, g.area / sectionArea);
           if (s.coverage < options_.minCoverage) continue;
-          // Only a group whose area nearly reaches the section's can cover it; then check exactly.
+          s.centrality = -std::abs(plane.distance(centre)) / size;
           const double slack =
               tol_.length() * perimeter(*section) * static_cast<double>(g.members.size() + 1);
-          s.covers = g.area >= sectionArea - slack && covers(*section, g, work);
-          s.centrality = -std::abs(plane.distance(centre)) / size;
-          if (!best || bestScore < s) {
-            best = &g;
-            bestScore = s;
+          scored.push_back({&g, std::move(*section), s, g.area >= sectionArea - slack});
+        }
+        std::sort(scored.begin(), scored.end(), [](const Candidate& a, const Candidate& b) {
+          return a.score.centrality > b.score.centrality;
+        });
+        for (Candidate& c : scored) {
+          if (c.mayCover && covers(c.section, *c.group, work)) {
+            c.score.covers = true;
+            c.score.coverage = 1;
+            best = c.group;
+            bestScore = c.score;
+            break;  // the most central covering plane
           }
+        }
+        if (best) break;
+        for (const Candidate& c : scored) {
+          if (!best || bestScore < c.score) best = c.group, bestScore = c.score;
         }
       }
       if (best) {
