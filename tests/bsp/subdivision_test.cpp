@@ -64,7 +64,9 @@ TEST(SubdivisionOffice, SealedRoomsAreNotConnected) {
   const std::vector<bool> seen = reachable(sub, static_cast<uint32_t>(start));
   const Aabb room = officeRoomInterior(o, 0, 0, 0);
   for (size_t c = 0; c < sub.cells.size(); ++c) {
-    if (seen[c]) EXPECT_TRUE(inside(room, sub.cells[c].shape.centroid())) << "cell " << c;
+    if (seen[c]) {
+      EXPECT_TRUE(inside(room, sub.cells[c].shape.centroid())) << "cell " << c;
+    }
   }
 }
 
@@ -130,6 +132,26 @@ TEST(SubdivisionDegenerate, SeededRandomClutter) {
     EXPECT_GT(sub.cells.size(), 20u) << "the generator should not be trivial";
     EXPECT_GT(sub.portals.size(), 20u);
   }
+}
+
+TEST(SubdivisionDegenerate, TriangleSoupWithSharedEdgesAndCrossings) {
+  // Random triangles, some sharing an edge with the previous one (a fan, folded), many crossing.
+  std::mt19937 rng(21);
+  SceneMaker m(boxOf({0, 0, 0}, {10, 10, 10}));
+  Vec3 a{5, 5, 5}, b{6, 5, 5};
+  auto point = [&] { return Vec3{uniform(rng, 1, 9), uniform(rng, 1, 9), uniform(rng, 1, 9)}; };
+  for (int i = 0; i < 40; ++i) {
+    const Vec3 c = point();
+    m.builder.addPolygon({a, b, c}, m.grey);
+    if (i % 3 == 2) {
+      a = point(), b = point();
+    } else {
+      a = b, b = c;  // the next triangle shares edge b-c
+    }
+  }
+  const Subdivision sub = buildSubdivision(m.scene);
+  expectInvariants(m.scene, sub, 21, 300);
+  EXPECT_GT(expectSegmentsCrossOnlyThroughPortals(m.scene, sub, 21, 400), 50);
 }
 
 TEST(SubdivisionDegenerate, HugeAndTinyCoordinates) {
