@@ -9,7 +9,9 @@ BUILD := build
 BUILD_ASAN := build-asan
 SCENE_DIR := $(BUILD)/out
 
-.PHONY: run test deps build build-asan test-release test-asan bench format clean
+FUZZ_SECONDS ?= 60
+
+.PHONY: run test deps build build-asan test-release test-asan bench fuzz format clean
 
 run: build
 	@./scripts/run-default.sh $(BUILD)/globalvis $(SCENE_DIR)
@@ -36,8 +38,16 @@ test-asan: build-asan
 bench: build
 	@./$(BUILD)/globalvis_bench --benchmark_min_time=0.2
 
+# libFuzzer on the OBJ importer (clang + libclang-rt-14-dev); corpus grows in build-fuzz/corpus.
+fuzz: deps
+	@./scripts/ensure-packages.sh clang libclang-rt-14-dev
+	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGV_FUZZ=ON > build-fuzz.configure.log || (cat build-fuzz.configure.log; exit 1)
+	@cmake --build build-fuzz -j $(JOBS) --target obj_import_fuzz
+	@mkdir -p build-fuzz/corpus && cp -n fuzz/corpus/* build-fuzz/corpus/
+	@./build-fuzz/obj_import_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=4096 build-fuzz/corpus
+
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD) $(BUILD_ASAN) $(BUILD).configure.log $(BUILD_ASAN).configure.log
+	rm -rf $(BUILD) $(BUILD_ASAN) build-fuzz *.configure.log

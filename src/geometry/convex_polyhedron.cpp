@@ -209,7 +209,9 @@ PlaneSide ConvexPolyhedron::classify(const Plane& plane, const Tolerance& tol) c
 PolyhedronSplit split(const ConvexPolyhedron& polyhedron, const Plane& splitter,
                       const Tolerance& tol, int capPlaneId) {
   PolyhedronSplit out;
-  const auto [lo, hi] = distanceRange(polyhedron, splitter);
+  // Plain variables, not a structured binding: clang 14 cannot capture bindings in lambdas.
+  const auto range = distanceRange(polyhedron, splitter);
+  const double lo = range.first, hi = range.second;
   // The whole cell goes to the side it reaches further into when the cut is not a real one.
   auto whole = [&] {
     if (hi >= -lo) {

@@ -67,8 +67,9 @@ std::vector<std::string> splitLines(const std::string& text) {
 
 }  // namespace
 
-Scene importObj(const std::string& path) {
-  const std::string text = readWholeFile(path);
+Scene importObj(const std::string& path) { return importObjText(path, readWholeFile(path)); }
+
+Scene importObjText(const std::string& path, const std::string& text) {
   Scene scene;
   const ObjPrecheck pre = precheckObj(path, text);
   const std::string mtlText = readMaterialLibraries(path, pre.libraries, scene.report);
@@ -105,8 +106,14 @@ Scene importObj(const std::string& path) {
       std::vector<Vec3> face;
       face.reserve(count);
       for (size_t k = 0; k < count; ++k) {
-        // tinyobjloader numbers vertices in file order, as the precheck does.
-        face.push_back(pre.vertices.at(static_cast<size_t>(mesh.indices[offset + k].vertex_index)));
+        // tinyobjloader numbers vertices in file order, as the precheck does; should the two
+        // readers ever disagree, that is still bad input, never a crash.
+        const auto vi = static_cast<size_t>(mesh.indices[offset + k].vertex_index);
+        if (vi >= pre.vertices.size())
+          throw InputError(path, 0, "face " + std::to_string(faceIndex + 1) + " refers to vertex " +
+                                        std::to_string(vi + 1) + " of " +
+                                        std::to_string(pre.vertices.size()));
+        face.push_back(pre.vertices[vi]);
       }
       offset += count;
       ++report.facesIn;

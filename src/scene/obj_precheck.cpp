@@ -42,18 +42,20 @@ bool parseLong(std::string_view token, long& value) {
   return ec == std::errc() && ptr == end;
 }
 
+/// Calls fn(lineNumber, line) for each line, comment stripped. Lines end at "\n", "\r\n" or a lone
+/// "\r", exactly as tinyobjloader splits them, so both readers see the same records.
 template <typename Fn>
 void forEachLine(const std::string& text, Fn&& fn) {
   size_t lineNo = 0, start = 0;
   while (start <= text.size()) {
-    size_t end = text.find('\n', start);
+    size_t end = text.find_first_of("\r\n", start);
     if (end == std::string::npos) end = text.size();
     ++lineNo;
     std::string_view line(text.data() + start, end - start);
     if (const size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
     fn(lineNo, line);
     if (end == text.size()) break;
-    start = end + 1;
+    start = end + ((text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n') ? 2 : 1);
   }
 }
 

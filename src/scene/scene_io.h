@@ -17,6 +17,9 @@ Scene loadScene(const std::string& path);
 /// warning and grey 0.5 without emission; a present but unreadable or malformed MTL is an error.
 Scene importObj(const std::string& path);
 
+/// importObj on text already read; `path` names it in messages and locates its MTL libraries.
+Scene importObjText(const std::string& path, const std::string& text);
+
 /// Writes the patches as OBJ (face k = patch k, vertices counter-clockwise seen from the front)
 /// and its MTL beside it (same name, .mtl), one material per scene material with Kd and Ke.
 /// Throws InputError when a file cannot be written.

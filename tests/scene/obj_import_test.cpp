@@ -171,6 +171,16 @@ TEST(ObjImportBadInput, UnreadableMtlNamesTheObjLine) {
   }
 }
 
+TEST(ObjImport, CarriageReturnLineEndingsAreLineEnds) {
+  // Found by the fuzzer: a lone "\r" ends a line for tinyobjloader, so it must for the precheck.
+  const auto dir = scratchDir();
+  const Scene s = importObj(writeFile(dir / "mac.obj", "v 0 0 0\rv 1 0 0\r\nv 0 1 0\rf 1 2 3\r"));
+  EXPECT_EQ(s.patches.size(), 1u);
+  EXPECT_NE(importError("mt\rf 1/1/1 2/ 1\n").find("bad.obj:2: face vertex index 1 is out of range"),
+            std::string::npos)
+      << importError("mt\rf 1/1/1 2/ 1\n");
+}
+
 TEST(ObjImportBadInput, UnsupportedExtension) {
   EXPECT_NE(importError("whatever", "", "scene.stl").find("unsupported scene format '.stl'"), std::string::npos);
 }
