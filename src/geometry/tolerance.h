@@ -21,6 +21,24 @@ inline constexpr double kRelativeLengthEpsilon = 1e-9;
 /// integer/0.1 units) need this to be loose; 1e-5 keeps a 10 m wall within 0.1 mm.
 inline constexpr double kRelativeModelEpsilon = 1e-5;
 
+/// Stabbing-line linear programs (paper §4.1, src/visibility/stabbing.cpp) run in coordinates
+/// scaled to the scene (|x| <= 1) with unit-length Plücker hyperplanes. A sequence is declared
+/// unstabbable only when even the best line misses some portal edge by more than this margin
+/// (relative to the size of the line's coordinates): rounding in a 6-variable LP over unit rows
+/// is ~1e-13, so a wrong "no" would need an error a million times larger; a "no" that falls
+/// inside the margin is answered "maybe visible" instead.
+inline constexpr double kStabbingLpMargin = 1e-7;
+
+/// A stabbing line is normalised to cross the first portal with unit speed along its normal; its
+/// tangential direction is bounded by this, so lines within atan(1e-4) ~ 0.006 degrees of the
+/// first portal's plane are outside the LP's search box (a documented, measure-tiny limitation).
+inline constexpr double kStabbingMaxGrazingSlope = 1e4;
+
+/// Feasibility slack of the LP solver itself, relative to the size of the current point: a
+/// constraint is "violated" only beyond rounding noise, so that degenerate (touching) constraints
+/// do not trigger needless recursions.
+inline constexpr double kLpRelativeFeasibility = 1e-12;
+
 /// Tolerances of one scene. `scale` is the diagonal of its bounding box (at least 1e-300 so that a
 /// degenerate scene still gets a positive tolerance).
 struct Tolerance {

@@ -1,0 +1,30 @@
+// Visibility propagation (paper §4): depth-first searches over portal sequences of the spatial
+// subdivision, pruned by the stabbing test, giving cell-to-cell and patch-to-patch visibility;
+// then blocker lists (paper §5). Output: the conservative VisibilityGraph.
+#pragma once
+
+#include "bsp/subdivision.h"
+#include "scene/scene.h"
+#include "visibility/visibility_graph.h"
+
+namespace gv {
+
+struct PropagationOptions {
+  /// Threads for the per-source searches (1 = serial). The output does not depend on it.
+  int threads = 0;  ///< 0: all hardware threads
+  /// Pairs sampled for the shaft-cull baseline statistic (patches meeting conv(S, R) among all
+  /// patches: a brute-force scan per pair, so sampled on big scenes).
+  size_t shaftSamples = 2000;
+  /// Called with (done, total) source patches now and then, from one thread at a time.
+  std::function<void(size_t, size_t)> progress;
+};
+
+/// The conservative visibility graph of `scene` over its subdivision:
+/// - a pair (S, R) is listed whenever some segment from the front of S to the front of R meets no
+///   other patch (never missed: every search step is pruned only by a proven-empty stabbing test);
+/// - its blockers are the patches seen from S or from R (by the same searches, either facing)
+///   that meet conv(S, R); an empty list (VISIBLE) is therefore exact.
+VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& subdivision,
+                                  const PropagationOptions& options = {});
+
+}  // namespace gv

@@ -1,0 +1,298 @@
+// Incremental stabbing-line test for portal sequences (paper §4.1): separating-plane clipping,
+// then Teller's Plücker-space LP, then an exactly confirmed witness line. See stabbing.h.
+#include "visibility/stabbing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace gv {
+namespace {
+
+// LP variables: the two direction components other than pivot_ (x0, x1), the moment (x2..x4),
+// and the slack t (x5). The pivot component is fixed by d·normal = 1.
+constexpr int kDim = 6;
+constexpr int kT = 5;
+
+bool isDegenerate(std::span<const Vec3> loop, const Tolerance& tol) {
+  if (loop.size() < 3) return true;
+  // Twice the area below length-tolerance x diameter: a sliver with no inside to cross.
+  double diameter = 0;
+  for (const Vec3& p : loop) diameter = std::max(diameter, distance(p, loop[0]));
+  return length(newellNormal(loop)) <= tol.length() * diameter;
+}
+
+// The extreme offsets of a loop along n: portals from files are planar only up to their printed
+// precision, so a portal's plane is taken as the slab its vertices span, and clips keep the whole
+// slab (the crossing point can be anywhere in it).
+double minDot(const Vec3& n, std::span<const Vec3> loop) {
+  double m = INFINITY;
+  for (const Vec3& p : loop) m = std::min(m, dot(n, p));
+  return m;
+}
+double maxDot(const Vec3& n, std::span<const Vec3> loop) {
+  double m = -INFINITY;
+  for (const Vec3& p : loop) m = std::max(m, dot(n, p));
+  return m;
+}
+
+Vec3 centroidOf(std::span<const Vec3> loop) {
+  Vec3 c{};
+  for (const Vec3& p : loop) c += p;
+  return c / static_cast<double>(loop.size());
+}
+
+}  // namespace
+
+StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
+  tests += o.tests;
+  blockedByClipping += o.blockedByClipping;
+  blockedByLp += o.blockedByLp;
+  stabbed += o.stabbed;
+  unresolved += o.unresolved;
+  lpNumericalFailures += o.lpNumericalFailures;
+  degeneratePortals += o.degeneratePortals;
+  return *this;
+}
+
+PortalSequenceStabber::PortalSequenceStabber(const Tolerance& tol, StabbingOptions options)
+    : tol_(tol), options_(options) {
+  levels_.reserve(64);
+  rows_.reserve(512);
+}
+
+void PortalSequenceStabber::clear() {
+  levels_.clear();
+  rows_.clear();
+  witness_.reset();
+}
+
+void PortalSequenceStabber::pop() {
+  if (levels_.empty()) throw std::logic_error("PortalSequenceStabber::pop on an empty sequence");
+  levels_.pop_back();
+  rows_.resize(levels_.empty() ? 0 : levels_.back().constraintEnd);
+}
+
+// One LP row per edge a→b of the loop: side(π, e) >= t, i.e. -(d·m_e + m·d_e) + t <= 0, with
+// d_pivot = (1 - sum_{j != pivot} n_j d_j) / n_pivot substituted, scaled to a unit row.
+void PortalSequenceStabber::appendRows(std::span<const Vec3> loop) {
+  const size_t n = loop.size();
+  const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
+  const double np = normal_[pivot_];
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 a = toLocal(loop[i]), b = toLocal(loop[(i + 1) % n]);
+    const Vec3 de = b - a, me = cross(a, b);
+    LpConstraint r;
+    // d·m_e = sum_{j != p} d_j (me_j - n_j me_p / n_p) + me_p / n_p
+    r.a[0] = -(me[j0] - normal_[j0] * me[pivot_] / np);
+    r.a[1] = -(me[j1] - normal_[j1] * me[pivot_] / np);
+    r.a[2] = -de.x;
+    r.a[3] = -de.y;
+    r.a[4] = -de.z;
+    r.a[kT] = 1;
+    r.b = me[pivot_] / np;
+    // Scale by the edge's own Plücker size so that every row measures distance alike (t is then
+    // "how far the line passes inside the edge", comparable across edges).
+    const double edgeSize = std::sqrt(lengthSquared(de) + lengthSquared(me));
+    if (!(edgeSize > 0)) continue;  // repeated vertex: no edge
+    double norm = 0;
+    for (int j = 0; j < kT; ++j) {
+      r.a[j] /= edgeSize;
+      norm += r.a[j] * r.a[j];
+    }
+    r.b /= edgeSize;
+    norm = std::sqrt(norm + 1.0);
+    for (int j = 0; j < kDim; ++j) r.a[j] /= norm;
+    r.b /= norm;
+    rows_.push_back(r);
+  }
+}
+
+StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
+  ++stats_.tests;
+  witness_.reset();
+  Level level;
+  level.original.assign(portal.begin(), portal.end());
+  level.clipped = level.original;
+  level.lpValid = options_.useLinearProgram;
+  const bool degenerate = isDegenerate(portal, tol_);
+  if (degenerate) ++stats_.degeneratePortals;
+
+  if (levels_.empty()) {
+    // The first portal fixes the LP frame.
+    origin_ = portal.empty() ? Vec3{} : centroidOf(portal);
+    scale_ = tol_.scale;
+    invScale_ = 1.0 / scale_;
+    firstDegenerate_ = degenerate;
+    if (!degenerate) {
+      normal_ = normalize(newellNormal(portal));
+      pivot_ = dominantAxis(normal_);
+    } else {
+      level.lpValid = false;  // no crossing direction to normalise by: nothing is provable
+    }
+    level.source = level.clipped;
+    rows_.clear();
+    if (level.lpValid) appendRows(level.clipped);
+    level.constraintEnd = rows_.size();
+    LpVector lo{}, hi{};
+    for (int j = 0; j < kT; ++j) lo[j] = -kStabbingMaxGrazingSlope, hi[j] = kStabbingMaxGrazingSlope;
+    lo[kT] = -8 * kStabbingMaxGrazingSlope, hi[kT] = kStabbingMaxGrazingSlope;
+    LpVector c{};
+    c[kT] = 1;
+    if (level.lpValid) {
+      std::optional<LpVector> x = lp_.solve(kDim, rows_, c, lo, hi);
+      if (x) level.optimum = *x; else level.lpValid = false;
+    }
+    levels_.push_back(std::move(level));
+    if (levels_.back().lpValid && options_.seekWitness) {
+      if (std::optional<Segment> w = findWitness(levels_.back().optimum)) {
+        witness_ = w;
+        ++stats_.stabbed;
+        return StabbingResult::Stabbed;
+      }
+    }
+    ++stats_.unresolved;
+    return StabbingResult::Unresolved;
+  }
+
+  const Level& prev = levels_.back();
+  level.lpValid = level.lpValid && prev.lpValid;
+  level.source = prev.source;
+  if (options_.clipBySeparatingPlanes) {
+    const Level& first = levels_.front();
+    // The line crosses the first portal's plane once, forward: everything later is in front.
+    if (!firstDegenerate_) {
+      const Vec3 n = normalize(newellNormal(first.original));
+      clipToHalfspace(level.clipped, n, minDot(n, first.original), tol_.length(), scratch_);
+      level.clipped.swap(scratch_);
+    }
+    // Separating planes of (first, previous) portal; needs two distinct portals before this one.
+    if (!level.clipped.empty() && levels_.size() >= 2)
+      clipBySeparatingPlanes(prev.source, prev.clipped, level.clipped, tol_);
+    if (level.clipped.empty()) {
+      ++stats_.blockedByClipping;
+      return StabbingResult::Blocked;
+    }
+    // Symmetrically, the line crosses the new portal's plane forward after crossing the first
+    // portal: the first portal's useful part is behind that plane.
+    if (!degenerate) {
+      const Vec3 n = normalize(newellNormal(level.original));
+      clipToHalfspace(level.source, -n, -maxDot(n, level.original), tol_.length(), scratch_);
+      level.source.swap(scratch_);
+      if (level.source.empty()) {
+        ++stats_.blockedByClipping;
+        return StabbingResult::Blocked;
+      }
+    }
+  }
+
+  const size_t rowsBefore = rows_.size();
+  if (level.lpValid) {
+    if (!degenerate && level.clipped.size() >= 3) appendRows(level.clipped);
+    // A shrunk first portal tightens the LP too (the line crosses the first plane inside it).
+    if (level.source != prev.source && level.source.size() >= 3) appendRows(level.source);
+  }
+  level.constraintEnd = rows_.size();
+  level.optimum = prev.optimum;
+  StabbingResult result = StabbingResult::Unresolved;
+  if (level.lpValid) {
+    result = testLp(level);
+    if (result == StabbingResult::Blocked) {
+      rows_.resize(rowsBefore);
+      ++stats_.blockedByLp;
+      return result;
+    }
+  }
+  levels_.push_back(std::move(level));
+  const Level& top = levels_.back();
+  if (top.lpValid && options_.seekWitness) {
+    if (std::optional<Segment> w = findWitness(top.optimum)) {
+      witness_ = w;
+      ++stats_.stabbed;
+      return StabbingResult::Stabbed;
+    }
+  }
+  ++stats_.unresolved;
+  return StabbingResult::Unresolved;
+}
+
+StabbingResult PortalSequenceStabber::testLp(Level& level) {
+  LpVector lo{}, hi{}, c{};
+  for (int j = 0; j < kT; ++j) lo[j] = -kStabbingMaxGrazingSlope, hi[j] = kStabbingMaxGrazingSlope;
+  // t's lower bound is below any achievable value (|side| <= |π| <= ~5 x the box), so the LP is
+  // always feasible and t* measures how far the best line misses.
+  lo[kT] = -8 * kStabbingMaxGrazingSlope, hi[kT] = kStabbingMaxGrazingSlope;
+  c[kT] = 1;
+  const size_t first = levels_.back().constraintEnd;
+  std::optional<LpVector> x =
+      lp_.extend(kDim, std::span<const LpConstraint>(rows_.data(), level.constraintEnd), first,
+                 level.optimum, c, lo, hi);
+  if (!x) {
+    // Cannot happen in exact arithmetic (the LP is feasible by construction): do not trust it.
+    ++stats_.lpNumericalFailures;
+    level.lpValid = false;
+    return StabbingResult::Unresolved;
+  }
+  level.optimum = *x;
+  double size = 1;
+  for (int j = 0; j < kT; ++j) size = std::max(size, std::abs((*x)[j]));
+  if ((*x)[kT] < -kStabbingLpMargin * size) return StabbingResult::Blocked;
+  return StabbingResult::Unresolved;
+}
+
+// The LP point x as Plücker coordinates (d, m) is a line only if d·m = 0. Remove m's component
+// along d: the nearest line with the same direction. Then, as a second candidate, the line
+// through the centres of the (clipped) first and last portals.
+std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) const {
+  const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
+  Vec3 d{};
+  d[j0] = x[0];
+  d[j1] = x[1];
+  d[pivot_] = (1.0 - normal_[j0] * x[0] - normal_[j1] * x[1]) / normal_[pivot_];
+  Vec3 m{x[2], x[3], x[4]};
+  const double dd = lengthSquared(d);
+  if (dd > 0) {
+    m -= d * (dot(d, m) / dd);
+    const Vec3 p = cross(d, m) / dd;  // the point of the line nearest the local origin
+    const Vec3 u = d / std::sqrt(dd);
+    const Segment line{toWorld(p), toWorld(p + u)};
+    if (confirms(line)) return line;
+  }
+  const Vec3 a = centroidOf(levels_.back().source), b = centroidOf(levels_.back().clipped);
+  if (levels_.size() >= 2 && !(a == b)) {
+    const Segment line{a, b};
+    if (confirms(line)) return line;
+  }
+  return std::nullopt;
+}
+
+// Exact: the line crosses every portal as pushed (not clipped) forward: side >= 0 with every
+// edge, > 0 with at least one (a line in the portal's plane has every side 0).
+bool PortalSequenceStabber::confirms(const Segment& line) const {
+  if (line.a == line.b) return false;
+  for (const Level& level : levels_) {
+    const Winding& w = level.original;
+    bool crosses = false;
+    for (size_t i = 0; i < w.size(); ++i) {
+      const int s = sideExact(line, Segment{w[i], w[(i + 1) % w.size()]});
+      if (s < 0) return false;
+      crosses = crosses || s > 0;
+    }
+    if (!crosses) return false;
+  }
+  return true;
+}
+
+StabbingResult testPortalSequence(std::span<const Winding> sequence, const Tolerance& tol,
+                                  StabbingOptions options, Segment* witness) {
+  PortalSequenceStabber stabber(tol, options);
+  StabbingResult result = StabbingResult::Unresolved;
+  for (const Winding& portal : sequence) {
+    result = stabber.push(portal);
+    if (result == StabbingResult::Blocked) return result;
+  }
+  if (result == StabbingResult::Stabbed && witness) *witness = *stabber.witness();
+  return result;
+}
+
+}  // namespace gv

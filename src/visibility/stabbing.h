@@ -1,0 +1,144 @@
+// Stabbing lines through portal sequences (paper §4.1): does an oriented line cross every portal
+// of a sequence, in order? The primitive operation of visibility propagation, incremental so that
+// a depth-first search over portal sequences pushes and pops one portal at a time.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "geometry/plucker.h"
+#include "geometry/tolerance.h"
+#include "geometry/vec3.h"
+#include "visibility/linear_program.h"
+#include "visibility/portal_clipping.h"
+
+namespace gv {
+
+/// Outcome of a stabbing test.
+enum class StabbingResult {
+  /// Proven: no stabbing line exists (the sequence can be pruned). Never answered when one exists.
+  Blocked,
+  /// A stabbing line was found and confirmed with exact orientation tests (see `witness()`).
+  Stabbed,
+  /// Neither proven; callers must treat it as visible (conservative).
+  Unresolved,
+};
+
+/// True unless the sequence is proven blocked: what visibility propagation continues on.
+inline bool mayBeVisible(StabbingResult r) { return r != StabbingResult::Blocked; }
+
+/// What the stabber did, summed over all pushes.
+struct StabbingStats {
+  uint64_t tests = 0;                  ///< pushes answered
+  uint64_t blockedByClipping = 0;      ///< target clipped away by separating planes
+  uint64_t blockedByLp = 0;            ///< Plücker LP infeasible beyond the margin
+  uint64_t stabbed = 0;                ///< confirmed by an exact witness line
+  uint64_t unresolved = 0;             ///< LP feasible, no witness: answered "maybe visible"
+  uint64_t lpNumericalFailures = 0;    ///< solver broke down (answered Unresolved)
+  uint64_t degeneratePortals = 0;      ///< portals of ~zero area (their edges are not used)
+
+  StabbingStats& operator+=(const StabbingStats& o);
+};
+
+/// Options; the defaults are what propagation should use.
+struct StabbingOptions {
+  /// Shrink each new portal by the separating planes of the first and the previous portal (and
+  /// the first by the new one's plane) before the LP: conservative, cheap, and prunes most of a
+  /// search. Off: the LP alone decides (used by tests to check each part separately).
+  bool clipBySeparatingPlanes = true;
+  /// Run the Plücker LP. Off: only clipping decides (everything else is Unresolved).
+  bool useLinearProgram = true;
+  /// Look for an exact witness line when the LP is feasible (only changes Stabbed vs Unresolved;
+  /// never the pruning). Costs one exact side test per portal edge.
+  bool seekWitness = true;
+};
+
+/// An incremental stabbing-line test for a growing sequence of convex portals.
+///
+/// Conventions: a portal is a convex vertex loop, counter-clockwise seen from the side sightlines
+/// go to (its Newell normal is the direction of travel: the cell it leads into). Consecutive
+/// portals lead into and out of the same convex cell; then a line that crosses every portal in
+/// its direction of travel crosses them in sequence order, and is a sightline through the cells.
+/// A stabbing line is such a line through the closed portals (touching edges counts).
+///
+/// Method (Teller): with Plücker coordinates π of the line, it crosses a convex portal in its
+/// direction of travel iff side(π, e) >= 0 for each of the portal's edges e (oriented
+/// counter-clockwise). Those are linear in π, so a sequence has a stabbing line only if the LP
+///   maximise t  s.t.  side(π, e)/|e| >= t for all edges,  d·n_first = 1,  |π| in a box
+/// has t* >= 0. `Blocked` is answered only when t* < -kStabbingLpMargin·|π*|: every line within
+/// the box misses some edge by more than rounding could explain. A feasible LP point need not be a
+/// line (the Plücker quadric d·m = 0); the optimum is projected to the nearest line and checked with
+/// exact side tests (sideExact = orient3d), and a second candidate through the portals' centres is
+/// tried; failing both the answer is `Unresolved` (counted).
+///
+/// Known limit: lines within ~atan(1/kStabbingMaxGrazingSlope) of the first portal's plane are
+/// outside the LP's box (a measure-tiny set of grazing lines); lines lying in a portal's plane do
+/// not cross it and are not stabbing lines here.
+///
+/// Not thread safe; use one per thread. Deterministic: same pushes, same answers.
+class PortalSequenceStabber {
+ public:
+  /// `tol.scale` (the scene's size) sets the clip slack and the LP's coordinate frame.
+  explicit PortalSequenceStabber(const Tolerance& tol, StabbingOptions options = {});
+
+  /// Tests the current sequence followed by `portal`. On Blocked the sequence is unchanged; on
+  /// Stabbed or Unresolved the portal is appended (undo with pop()).
+  StabbingResult push(std::span<const Vec3> portal);
+  /// Removes the last portal pushed (the sequence must not be empty).
+  void pop();
+  /// Empties the sequence (keeps statistics).
+  void clear();
+  /// Number of portals in the sequence.
+  size_t depth() const { return levels_.size(); }
+
+  /// The last confirmed stabbing line (after a Stabbed push), oriented along the travel direction.
+  const std::optional<Segment>& witness() const { return witness_; }
+  /// The portal at `index` as shrunk by separating-plane clipping (a superset of where stabbing
+  /// lines cross it).
+  std::span<const Vec3> clippedPortal(size_t index) const { return levels_[index].clipped; }
+
+  const StabbingStats& stats() const { return stats_; }
+  void resetStats() { stats_ = {}; }
+
+ private:
+  struct Level {
+    Winding original;       // as pushed
+    Winding clipped;        // after separating-plane clipping
+    Winding source;         // the first portal as clipped by this level's plane (for later clips)
+    size_t constraintEnd;   // LP rows of levels [0, this]
+    LpVector optimum;       // LP optimum with those rows
+    bool lpValid;           // false once the LP broke down (then everything is Unresolved)
+  };
+
+  StabbingResult testLp(Level& level);
+  void appendRows(std::span<const Vec3> loop);
+  std::optional<Segment> findWitness(const LpVector& x) const;
+  bool confirms(const Segment& line) const;
+  Vec3 toLocal(const Vec3& p) const { return (p - origin_) * invScale_; }
+  Vec3 toWorld(const Vec3& p) const { return origin_ + p * scale_; }
+
+  Tolerance tol_;
+  StabbingOptions options_;
+  std::vector<Level> levels_;
+  std::vector<LpConstraint> rows_;
+  SeidelLp lp_;
+  StabbingStats stats_;
+  std::optional<Segment> witness_;
+  // Frame of the current sequence, fixed by its first portal: origin at its centre, lengths in
+  // units of the scene size, normalisation d·normal_ = 1 solved for coordinate pivot_.
+  Vec3 origin_;
+  double scale_ = 1, invScale_ = 1;
+  Vec3 normal_;
+  int pivot_ = 0;
+  bool firstDegenerate_ = false;
+  Winding scratch_;
+};
+
+/// One-shot form: the result of pushing every portal of `sequence` (stopping at the first
+/// Blocked); `witness`, when given, receives the confirmed line on Stabbed.
+StabbingResult testPortalSequence(std::span<const Winding> sequence, const Tolerance& tol,
+                                  StabbingOptions options = {}, Segment* witness = nullptr);
+
+}  // namespace gv

@@ -1,0 +1,62 @@
+// The conservative visibility graph over patches: interacting pairs with their blocker lists,
+// and the paper's §7.2–§7.3 figures. The output of propagation (paper §4.2, §5).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "visibility/stabbing.h"
+
+namespace gv {
+
+/// Status of a patch pair (paper §5): INVISIBLE pairs are simply not listed.
+enum class PairStatus { Invisible, Partial, Visible };
+
+/// An interaction I(S, R) with its blocker list B(S, R), S < R. An empty list means VISIBLE:
+/// no other patch meets conv(S, R). Otherwise PARTIAL: every patch that some segment from S's
+/// front to R's front meets first, seen from S or from R, is in `blockers` (sorted).
+struct Interaction {
+  uint32_t s = 0, r = 0;
+  std::vector<uint32_t> blockers;
+  PairStatus status() const { return blockers.empty() ? PairStatus::Visible : PairStatus::Partial; }
+};
+
+/// Stabbing successes and failures by portal-sequence length (the paper's Fig. 13).
+struct SequenceHistogram {
+  std::vector<uint64_t> successes, failures;  ///< index = sequence length in portals
+  void add(size_t length, bool success);
+  SequenceHistogram& operator+=(const SequenceHistogram& o);
+};
+
+/// The figures of §7.2 and §7.3 for one run.
+struct VisibilityStats {
+  size_t patches = 0, cells = 0, portals = 0;
+  uint64_t cellPairsVisible = 0;       ///< ordered (source, reached) cell pairs, source included
+  uint64_t cellStabbingTests = 0;      ///< portal-sequence tests of the cell-to-cell search
+  uint64_t patchStabbingTests = 0;     ///< tests of the patch searches (portals and targets)
+  uint64_t unresolvedStabbing = 0;     ///< tests answered "maybe" (counted as visible)
+  double meanSequenceLength = 0;       ///< over the cell-level tests, in portals
+  SequenceHistogram cellHistogram;     ///< Fig. 13
+  uint64_t pairsVisible = 0, pairsPartial = 0;
+  uint64_t sameCellShortcuts = 0;      ///< pairs declared VISIBLE by the same-empty-cell rule
+  double meanBlockersPerPartial = 0;
+  double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
+  uint64_t shaftSamples = 0;
+  double seconds = 0, cellSeconds = 0, patchSeconds = 0, blockerSeconds = 0;
+  int threads = 1;
+};
+
+struct VisibilityGraph {
+  std::vector<Interaction> interactions;  ///< sorted by (s, r)
+  VisibilityStats stats;
+};
+
+/// Writes `visibility.txt` in the paper's format (DESIGN.md contract): `S R n b1 ... bn`.
+void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path);
+/// Writes the statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
+void writeVisibilityStats(const VisibilityGraph& graph, const std::string& path);
+/// Reads a visibility.txt back (for `verify`); throws InputError on malformed lines.
+VisibilityGraph readVisibilityTxt(const std::string& path);
+
+}  // namespace gv
