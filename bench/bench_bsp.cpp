@@ -36,7 +36,8 @@ uint64_t hashOf(const Subdivision& sub) {
 
 /// BSP + portals for the office of about `state.range(0)` patches.
 void BM_SubdivisionOffice(benchmark::State& state) {
-  const Scene scene = generateOffice(officeOptionsForPatchCount(static_cast<size_t>(state.range(0))));
+  const Scene scene =
+      generateOffice(officeOptionsForPatchCount(static_cast<size_t>(state.range(0))));
   {
     const Subdivision sub = buildSubdivision(scene);
     check(sub);

@@ -13,7 +13,9 @@ namespace gv {
 /// A closed axis-aligned rectangle in some plane's 2D coordinates.
 struct Box2 {
   double u0 = 0, v0 = 0, u1 = 0, v1 = 0;
-  bool overlaps(const Box2& o) const { return u0 <= o.u1 && o.u0 <= u1 && v0 <= o.v1 && o.v0 <= v1; }
+  bool overlaps(const Box2& o) const {
+    return u0 <= o.u1 && o.u0 <= u1 && v0 <= o.v1 && o.v0 <= v1;
+  }
 };
 
 /// The boxes bucketed into about one grid cell per box (at most 256 x 256). A box is listed in
@@ -28,7 +30,8 @@ class BoxGrid2 {
       all.u1 = std::max(all.u1, b.u1), all.v1 = std::max(all.v1, b.v1);
     }
     bounds_ = all;
-    const int side = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(boxes_.size()))), 1, 256);
+    const int side =
+        std::clamp(static_cast<int>(std::sqrt(static_cast<double>(boxes_.size()))), 1, 256);
     nu_ = nv_ = side;
     cellU_ = std::max((all.u1 - all.u0) / side, 1e-300);
     cellV_ = std::max((all.v1 - all.v0) / side, 1e-300);

@@ -23,9 +23,8 @@ std::optional<ConvexPolygon> sectionOf(const ConvexPolyhedron& cell, const Plane
   const Vec3 v = cross(n, u);
   const Vec3 c = box.center() - n * plane.distance(box.center());
   const double h = box.diagonal();
-  std::optional<ConvexPolygon> section =
-      ConvexPolygon{{c - u * h - v * h, c + u * h - v * h, c + u * h + v * h, c - u * h + v * h},
-                    plane};
+  std::optional<ConvexPolygon> section = ConvexPolygon{
+      {c - u * h - v * h, c + u * h - v * h, c + u * h + v * h, c - u * h + v * h}, plane};
   for (const Plane& halfspace : cell.halfspaces) {
     section = clipToFront(*section, halfspace.flipped(), tol);
     if (!section) return std::nullopt;
@@ -50,9 +49,9 @@ struct Group {
 
 /// How good a split is; compared lexicographically (bigger is better).
 struct Score {
-  bool covers = false;   ///< the fragments cover the whole section: the halves cannot see each other
-  double coverage = 0;   ///< fragment area / section area, at most 1
-  double centrality = 0; ///< minus the plane's distance from the cell's centre, over its size
+  bool covers = false;  ///< the fragments cover the whole section: the halves cannot see each other
+  double coverage = 0;  ///< fragment area / section area, at most 1
+  double centrality = 0;  ///< minus the plane's distance from the cell's centre, over its size
   bool operator<(const Score& o) const {
     if (covers != o.covers) return !covers;
     if (coverage != o.coverage) return coverage < o.coverage;
@@ -216,8 +215,8 @@ class Builder {
       }
       if (best) {
         const Group chosen = *best;  // `all` dies with this iteration
-        PolyhedronSplit parts = split(work.cell, planes[chosen.plane], tol_,
-                                      static_cast<int>(tree_.nodes.size()));
+        PolyhedronSplit parts =
+            split(work.cell, planes[chosen.plane], tol_, static_cast<int>(tree_.nodes.size()));
         if (parts.front && parts.back) return splitWork(work, chosen, parts, stack);
         // The cut is not a real one (rounding): the plane only grazes the cell.
         grazing.push_back(static_cast<uint32_t>(best - all.data()));

@@ -25,8 +25,8 @@ struct BspOptions {
   /// only when the patch fragments on it inside the cell cover at least this fraction of the
   /// cell's section by that plane. 0 (the default) splits on every plane that still has a
   /// fragment inside the cell, so every patch ends on cell boundaries and no cell holds a patch
-  /// in its interior; raising it (say 0.1) gives fewer, larger cells whose small patches (furniture,
-  /// lights) stay inside them and are recorded as the cell's interior patches.
+  /// in its interior; raising it (say 0.1) gives fewer, larger cells whose small patches
+  /// (furniture, lights) stay inside them and are recorded as the cell's interior patches.
   double minCoverage = 0.0;
   /// A plane whose fragments in a cell total less than this fraction of the scene's diagonal
   /// squared never splits that cell (0: none is too small).
@@ -46,8 +46,12 @@ struct PatchFragment {
 };
 
 /// A child reference: >= 0 is a node index, < 0 encodes leaf cell `leafOf(child)`.
-inline constexpr int32_t leafChild(uint32_t leaf) { return -1 - static_cast<int32_t>(leaf); }
-inline constexpr uint32_t leafOf(int32_t child) { return static_cast<uint32_t>(-1 - child); }
+inline constexpr int32_t leafChild(uint32_t leaf) {
+  return -1 - static_cast<int32_t>(leaf);
+}
+inline constexpr uint32_t leafOf(int32_t child) {
+  return static_cast<uint32_t>(-1 - child);
+}
 
 /// An internal node. Its splitting plane's front child holds the points with distance > 0.
 struct BspNode {

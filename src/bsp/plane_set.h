@@ -13,8 +13,8 @@ namespace gv {
 
 /// Where a patch lies: the merged plane it belongs to and which way it faces it.
 struct PatchPlane {
-  uint32_t plane = 0;       ///< index into PlaneSet::planes()
-  bool facesAlong = true;   ///< true when the patch's front is the plane's front (normals agree)
+  uint32_t plane = 0;      ///< index into PlaneSet::planes()
+  bool facesAlong = true;  ///< true when the patch's front is the plane's front (normals agree)
 };
 
 /// The merged support planes of a set of patches.

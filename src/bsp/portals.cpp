@@ -70,7 +70,8 @@ void buildPortals(Subdivision& sub) {
 
     std::vector<Box2> fragmentBoxes;
     fragmentBoxes.reserve(node.coplanar.size());
-    for (const PatchFragment& f : node.coplanar) fragmentBoxes.push_back(box2(f.polygon, drop, slack));
+    for (const PatchFragment& f : node.coplanar)
+      fragmentBoxes.push_back(box2(f.polygon, drop, slack));
     BoxGrid2 fragments(std::move(fragmentBoxes));
 
     // Coaffine patches of every face on this plane: those overlapping it in more than a sliver.

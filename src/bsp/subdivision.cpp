@@ -55,7 +55,8 @@ Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
     coaffine += onBoundary.size();
     faces += cell.faces.size();
     cell.patches = onBoundary;
-    cell.patches.insert(cell.patches.end(), cell.interiorPatches.begin(), cell.interiorPatches.end());
+    cell.patches.insert(cell.patches.end(), cell.interiorPatches.begin(),
+                        cell.interiorPatches.end());
     sortUnique(cell.patches);
   }
   sub.stats.portalSeconds = secondsSince(portalStart);

@@ -52,9 +52,9 @@ struct Portal {
 struct SubdivisionStats {
   size_t patches = 0, planes = 0, nodes = 0, cells = 0, portals = 0;
   int depth = 0;
-  double meanFacesPerCell = 0;           ///< boundary faces per cell
-  double meanCoaffinePatchesPerCell = 0; ///< distinct patches coaffine with some face, per cell
-  double meanPortalsPerCell = 0;         ///< portals on a cell's boundary, per cell
+  double meanFacesPerCell = 0;            ///< boundary faces per cell
+  double meanCoaffinePatchesPerCell = 0;  ///< distinct patches coaffine with some face, per cell
+  double meanPortalsPerCell = 0;          ///< portals on a cell's boundary, per cell
   double bspSeconds = 0, portalSeconds = 0;
 };
 

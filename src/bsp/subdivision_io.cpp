@@ -45,7 +45,8 @@ void writeCellsObj(const Subdivision& sub, const std::string& path) {
   size_t next = 1;
   for (size_t c = 0; c < sub.cells.size(); ++c) {
     fmt::print(f.get(), "g cell_{}\n", c);
-    for (const PolyhedronFace& face : sub.cells[c].shape.faces) writePolygon(f.get(), face.polygon, next);
+    for (const PolyhedronFace& face : sub.cells[c].shape.faces)
+      writePolygon(f.get(), face.polygon, next);
   }
   finish(f, path);
 }

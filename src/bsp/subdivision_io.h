@@ -2,9 +2,8 @@
 // stats as JSON. Paper §3, §7.1.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "bsp/subdivision.h"
 

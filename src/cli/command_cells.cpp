@@ -15,9 +15,10 @@
 namespace gv::cli {
 
 Action addCellsCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand(
-      "cells", "Build the BSP cells and portals of a scene (paper §3); write cells.obj, "
-               "portals.obj and stats.json into a directory");
+  auto* cmd =
+      app.add_subcommand("cells",
+                         "Build the BSP cells and portals of a scene (paper §3); write cells.obj, "
+                         "portals.obj and stats.json into a directory");
   struct State {
     std::string scene, output;
     BspOptions options;

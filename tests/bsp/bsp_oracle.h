@@ -250,12 +250,12 @@ inline void expectInvariants(const Scene& scene, const Subdivision& sub, uint32_
         }
         bool strictPatch = false, loosePatch = false;
         for (uint32_t patch : must) {
-          strictPatch = strictPatch || inPolygon(scene.patches[patch].polygon.vertices, q, margin,
-                                                 2 * mustOff);
+          strictPatch = strictPatch ||
+                        inPolygon(scene.patches[patch].polygon.vertices, q, margin, 2 * mustOff);
         }
         for (uint32_t patch : coplanar) {
-          loosePatch = loosePatch || inPolygon(scene.patches[patch].polygon.vertices, q, -margin,
-                                               2 * mayOff);
+          loosePatch = loosePatch ||
+                       inPolygon(scene.patches[patch].polygon.vertices, q, -margin, 2 * mayOff);
         }
         EXPECT_LE(strictPortals, 1) << "overlapping portals at " << q;
         EXPECT_FALSE(strictPortals > 0 && strictPatch) << "portal over a patch at " << q;
@@ -290,7 +290,8 @@ inline int expectSegmentsCrossOnlyThroughPortals(const Scene& scene, const Subdi
     // Short segments mostly: long ones nearly always hit a patch in a dense scene.
     const Vec3 b = a + (point() - a) * uniform(rng, 0.02, 0.5);
     bool blocked = false;
-    for (const Patch& p : scene.patches) blocked = blocked || segmentNearPatch(a, b, p, 10 * margin);
+    for (const Patch& p : scene.patches)
+      blocked = blocked || segmentNearPatch(a, b, p, 10 * margin);
     if (blocked) continue;
     // Each cell's parameter interval along the segment (clip by its halfspaces).
     struct Span {

@@ -16,7 +16,8 @@ struct SceneMaker {
   SceneBuilder builder;
   uint32_t grey;
   explicit SceneMaker(const Aabb& box)
-      : builder(scene, Tolerance::forBounds(box)), grey(scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}})) {}
+      : builder(scene, Tolerance::forBounds(box)),
+        grey(scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}})) {}
 };
 
 inline Aabb boxOf(Vec3 lo, Vec3 hi) {
@@ -40,12 +41,12 @@ inline Scene closedRoom() {
   const double t = kWall;
   SceneMaker m(boxOf({-t, -t, -t}, {4 + t, 4 + t, 3 + t}));
   auto& b = m.builder;
-  b.addBox({-t, -t, -t}, {4 + t, 4 + t, 0}, m.grey);   // floor
+  b.addBox({-t, -t, -t}, {4 + t, 4 + t, 0}, m.grey);     // floor
   b.addBox({-t, -t, 3}, {4 + t, 4 + t, 3 + t}, m.grey);  // roof
-  b.addBox({-t, -t, 0}, {0, 4 + t, 3}, m.grey);        // -x wall
-  b.addBox({4, -t, 0}, {4 + t, 4 + t, 3}, m.grey);     // +x wall
-  b.addBox({0, -t, 0}, {4, 0, 3}, m.grey);             // -y wall
-  b.addBox({0, 4, 0}, {4, 4 + t, 3}, m.grey);          // +y wall
+  b.addBox({-t, -t, 0}, {0, 4 + t, 3}, m.grey);          // -x wall
+  b.addBox({4, -t, 0}, {4 + t, 4 + t, 3}, m.grey);       // +x wall
+  b.addBox({0, -t, 0}, {4, 0, 3}, m.grey);               // -y wall
+  b.addBox({0, 4, 0}, {4, 4 + t, 3}, m.grey);            // +y wall
   return std::move(m.scene);
 }
 

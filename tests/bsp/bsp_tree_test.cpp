@@ -1,9 +1,10 @@
 // The BSP tree of paper §3: plane merging, cells that partition the root volume, the stop rule.
+#include "bsp/bsp_tree.h"
+
 #include <gtest/gtest.h>
 
 #include "bsp/bsp_oracle.h"
 #include "bsp/bsp_scenes.h"
-#include "bsp/bsp_tree.h"
 #include "bsp/plane_set.h"
 #include "bsp/subdivision.h"
 #include "generators/office.h"
@@ -78,7 +79,8 @@ TEST(BspTree, LeafAtAgreesWithBruteForceContainment) {
     int strict = -1;
     for (size_t c = 0; c < tree.leaves.size(); ++c) {
       const auto& hs = tree.leaves[c].shape.halfspaces;
-      if (std::all_of(hs.begin(), hs.end(), [&](const Plane& h) { return h.distance(p) < -margin; }))
+      if (std::all_of(hs.begin(), hs.end(),
+                      [&](const Plane& h) { return h.distance(p) < -margin; }))
         strict = static_cast<int>(c);
     }
     if (strict < 0) continue;  // on a boundary
@@ -118,7 +120,8 @@ TEST(BspTree, CoarserStopRuleKeepsSmallPatchesInsideCells) {
   EXPECT_LT(big.leaves.size(), fine.leaves.size());
   size_t interior = 0;
   double sum = 0;
-  for (const BspLeaf& leaf : big.leaves) interior += leaf.interior.size(), sum += leaf.shape.volume();
+  for (const BspLeaf& leaf : big.leaves)
+    interior += leaf.interior.size(), sum += leaf.shape.volume();
   EXPECT_GT(interior, 0u);
   EXPECT_NEAR(sum, boxVolume(big.root.bounds()), 1e-9 * boxVolume(big.root.bounds()));
 }

@@ -1,10 +1,11 @@
 // The subdivision as a whole (paper §3, §7.1): office buildings whose sealed rooms stay apart,
 // messy input, huge and tiny coordinates, and the statistics.
+#include "bsp/subdivision.h"
+
 #include <gtest/gtest.h>
 
 #include "bsp/bsp_oracle.h"
 #include "bsp/bsp_scenes.h"
-#include "bsp/subdivision.h"
 #include "generators/office.h"
 
 namespace gv {
@@ -35,10 +36,13 @@ Reach reachFromFirstRoom(const OfficeOptions& o, const Subdivision& sub) {
   Reach r;
   for (int f = 0; f < o.floors; ++f) {
     for (int row = 0; row < o.rows; ++row) {
-      const int corridor = cellStrictlyAt(sub, [&] {
-        const Aabb c = officeCorridorInterior(o, f, row);
-        return Vec3{0.5 * (c.lo.x + c.hi.x), 0.5 * (c.lo.y + c.hi.y), c.lo.z + 1.4};
-      }(), 1e-6);
+      const int corridor = cellStrictlyAt(
+          sub,
+          [&] {
+            const Aabb c = officeCorridorInterior(o, f, row);
+            return Vec3{0.5 * (c.lo.x + c.hi.x), 0.5 * (c.lo.y + c.hi.y), c.lo.z + 1.4};
+          }(),
+          1e-6);
       r.corridors += corridor >= 0 && seen[static_cast<size_t>(corridor)];
       for (int col = 0; col < o.columns; ++col) {
         if (f == 0 && row == 0 && col == 0) continue;
@@ -157,9 +161,9 @@ TEST(SubdivisionDegenerate, TriangleSoupWithSharedEdgesAndCrossings) {
 TEST(SubdivisionDegenerate, HugeAndTinyCoordinates) {
   const Scene base = twoRoomsWithDoor();
   const Subdivision ref = buildSubdivision(base);
-  for (auto [scale, origin] : {std::pair{1e-4, Vec3{0, 0, 0}}, std::pair{1e4, Vec3{0, 0, 0}},
-                               std::pair{1.0, Vec3{1e5, -2e5, 3e4}},
-                               std::pair{1e-3, Vec3{-1e3, 1e3, 0}}}) {
+  for (auto [scale, origin] :
+       {std::pair{1e-4, Vec3{0, 0, 0}}, std::pair{1e4, Vec3{0, 0, 0}},
+        std::pair{1.0, Vec3{1e5, -2e5, 3e4}}, std::pair{1e-3, Vec3{-1e3, 1e3, 0}}}) {
     const Scene s = transformed(base, scale, origin);
     const Subdivision sub = buildSubdivision(s);
     expectInvariants(s, sub, 6, 200);
