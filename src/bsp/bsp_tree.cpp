@@ -258,10 +258,13 @@ class Builder {
       if (s.front) front.fragments.push_back({f.patch, f.plane, std::move(*s.front)});
       if (s.back) back.fragments.push_back({f.patch, f.plane, std::move(*s.back)});
     }
-    // A resting fragment is on a plane that grazes this cell: it stays with the child it is in.
+    // A resting fragment lies on a plane that only grazes the cell: it is split like the others
+    // but never becomes a splitter; the children record it as lying in (or on) them.
     for (PatchFragment& f : work.resting) {
-      const PlaneSide side = f.polygon.classify(node.splitter, tol_);
-      (side == PlaneSide::Back ? back : front).resting.push_back(std::move(f));
+      PolygonSplit s = split(f.polygon, node.splitter, tol_);
+      if (s.on) front.resting.push_back(std::move(f));
+      if (s.front) front.resting.push_back({f.patch, f.plane, std::move(*s.front)});
+      if (s.back) back.resting.push_back({f.patch, f.plane, std::move(*s.back)});
     }
     link(work, nodeId);
     tree_.nodes.push_back(std::move(node));
