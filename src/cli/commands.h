@@ -13,5 +13,6 @@ using Action = std::function<int()>;
 Action addInfoCommand(CLI::App& app);
 Action addGenCommand(CLI::App& app);
 Action addCellsCommand(CLI::App& app);
+Action addRadiosityCommand(CLI::App& app);
 
 }  // namespace gv::cli

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add(gv::cli::addInfoCommand);
   add(gv::cli::addGenCommand);
   add(gv::cli::addCellsCommand);
+  add(gv::cli::addRadiosityCommand);
   CLI::App* help = app.add_subcommand("help", "List the subcommands");
 
   try {

@@ -1,0 +1,108 @@
+// Hierarchical radiosity (Hanrahan, Salzman & Aupperle, SIGGRAPH 1991) with pluggable link
+// visibility (paper §6, §7.4): links between elements carrying an exact unoccluded form factor
+// times a visibility fraction, BF refinement, gather and push-pull, iterated to convergence.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "radiosity/element_tree.h"
+#include "radiosity/form_factor.h"
+#include "radiosity/link_visibility.h"
+#include "scene/scene.h"
+
+namespace gv {
+
+/// A two-way link between elements a and b (HSA91 stores both directions; here one record holds
+/// both, related by reciprocity A_a F_ab = A_b F_ba).
+struct Link {
+  uint32_t a = 0, b = 0;     ///< element ids
+  double formFactorAB = 0;   ///< F(a → b) × visibility fraction: a gathers formFactorAB · B_b
+  double formFactorBA = 0;   ///< F(b → a) × visibility fraction
+  double unoccludedAB = 0;   ///< F(a → b) without visibility (an upper bound of the transfer)
+  double variationA = 0;     ///< spread of the point form factor to b over a (FormFactorEstimate)
+  double variationB = 0;     ///< spread of the point form factor to a over b
+  float visibility = 1;      ///< the oracle's fraction
+  VisibilityStatus status = VisibilityStatus::Visible;
+  TubeId tube = kNoTube;
+};
+
+/// Solver parameters. Defaults aim at converged answers (per-patch errors well below 1 %) on
+/// scenes like the Cornell box and the default office in seconds, not at the fastest preview.
+struct RadiosityOptions {
+  /// BF refinement threshold (HSA91 §4.2, with an error bound in place of F): a link is refined
+  /// while, in either direction, ρ_recv B_src A_recv δF exceeds `epsilon` times the total emitted
+  /// power of the scene, δF being the link's form-factor error bound: the spread of the point
+  /// form factor over the receiver for a Visible link (what handing the receiver one mean value
+  /// misses), the whole unoccluded form factor for a Partial one (its visibility is a sample).
+  /// B is the largest RGB channel. Relative, so it means the same in millimetres and in metres.
+  double epsilon = 2e-5;
+  /// Elements smaller than this fraction of the scene's total patch area are never subdivided.
+  double minArea = 1e-5;
+  /// A solve stops when no element's radiosity (any channel) changed by more than `tolerance`
+  /// times the largest radiosity in the last Jacobi sweep.
+  double tolerance = 1e-6;
+  /// Refine/solve rounds at most (HSA91's outer loop); it stops earlier when a round refines
+  /// no link.
+  int maxRefinements = 12;
+  /// Jacobi sweeps per solve at most (a safety net: convergence takes ~log(tol)/log(ρ_max)).
+  int maxSweeps = 100000;
+  uint64_t seed = 1;  ///< seeds every visibility sample (per link, so runs are deterministic)
+  FormFactorOptions formFactor;
+  /// Called with one line of progress per round (for stderr); may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+/// Link counts by the paper's visibility classes.
+struct LinkCounts {
+  size_t visible = 0, partial = 0, invisible = 0;
+  size_t total() const { return visible + partial + invisible; }
+};
+
+/// One row of the paper's Table 1: what a refinement round did.
+struct RefinementStats {
+  int round = 0;           ///< 0 = the initial links
+  LinkCounts created;      ///< links made this round by class (invisible ones are dropped)
+  LinkCounts links;        ///< links alive after the round (invisible = 0)
+  size_t linksRefined = 0;  ///< links replaced by children this round
+  size_t elements = 0;     ///< elements after the round (patches + all children)
+  size_t leaves = 0;
+  size_t interactions = 0;  ///< form factor + visibility evaluations this round
+  uint64_t rays = 0;        ///< visibility rays cast this round
+  double refineSeconds = 0;
+  int sweeps = 0;           ///< Jacobi sweeps of the solve that followed
+  double solveSeconds = 0;
+};
+
+/// Totals of a run.
+struct RadiosityStats {
+  std::string visibility;  ///< the oracle's name
+  size_t patches = 0;
+  size_t candidatePairs = 0;  ///< pairs the oracle proposed
+  size_t facingPairs = 0;     ///< of which could face each other
+  std::vector<RefinementStats> rounds;
+  uint64_t rays = 0;
+  size_t interactions = 0;
+  double seconds = 0;
+  bool converged = false;  ///< the last round refined nothing and the last solve met tolerance
+  double emittedPower = 0;  ///< Σ A E over emitters (largest channel)
+};
+
+/// The solution: radiosity per patch and the refined hierarchy with its links.
+struct RadiosityResult {
+  std::vector<Rgb> patchRadiosity;  ///< area-weighted mean radiosity of patch k
+  std::vector<Rgb> elementRadiosity;  ///< per element id of `elements`
+  ElementTree elements;
+  std::vector<Link> links;
+  RadiosityStats stats;
+};
+
+/// Solves the scene's radiosity. Exchange is one-sided: light leaves a patch's front and arrives
+/// on a patch's front only. Emission is Material::emission (radiosity units), reflectance Kd.
+RadiosityResult solveRadiosity(const Scene& scene, LinkVisibility& visibility,
+                               const RadiosityOptions& options = {});
+
+}  // namespace gv

@@ -1,0 +1,61 @@
+// The visibility interface of the hierarchical radiosity solver: which patch pairs get initial
+// links, and the visibility of a link between two elements, refined from its parent link's state.
+// The paper's blocker lists and linespace tubes (§5, §6) plug in here as one implementation; the
+// ray-sampling oracles of HSA91 (`rays`) and Haines & Wallace's shafts (`shaft`) are others.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string_view>
+
+#include "radiosity/element_tree.h"
+
+namespace gv {
+
+/// The paper's three visibility classes of an interaction (§4.2, §6.2).
+enum class VisibilityStatus : uint8_t { Invisible = 0, Partial = 1, Visible = 2 };
+
+/// Opaque per-link state owned by a LinkVisibility (a tube: blocker list + linespace hull, a shaft
+/// candidate list, ...). kNoTube for oracles that keep none and for "no parent" (initial links).
+using TubeId = uint32_t;
+inline constexpr TubeId kNoTube = std::numeric_limits<TubeId>::max();
+
+/// What an oracle says about the light path between two elements.
+struct VisibilityEstimate {
+  VisibilityStatus status = VisibilityStatus::Visible;
+  /// Estimated fraction of the unoccluded form factor that is not blocked, in [0, 1]: 1 for
+  /// Visible, 0 for Invisible. The solver multiplies the exact unoccluded form factor by it.
+  double fraction = 1.0;
+  TubeId tube = kNoTube;  ///< state handed back as `parentTube` when this link is refined
+  uint64_t raysCast = 0;  ///< work done, for the statistics
+};
+
+/// A visibility oracle for links. The solver calls, in order: forEachCandidatePair once, then
+/// estimate for every link it creates (initial links with parentTube = the pair's tube from
+/// forEachCandidatePair; a refined link's children with the parent's tube).
+///
+/// Where the paper's `blockers` mode plugs in: forEachCandidatePair enumerates the VisibilityGraph
+/// (VISIBLE and PARTIAL pairs only, each with a tube holding its blocker list B(S, R));
+/// estimate(a, b, parentTube) reclassifies the parent's blockers against the child pair (§6.2),
+/// returns Visible with fraction 1 when none impinges (no rays), Invisible when one occludes
+/// completely, else Partial with a fraction from rays tested against the child's blockers only.
+class LinkVisibility {
+ public:
+  virtual ~LinkVisibility() = default;
+
+  /// Short name for statistics ("rays", "shaft", "blockers").
+  virtual std::string_view name() const = 0;
+
+  /// Calls `visit(a, b, tube)` for every unordered patch pair a < b that may exchange light.
+  /// Pairs not visited never get a link. The solver still drops pairs that cannot face.
+  virtual void forEachCandidatePair(
+      const std::function<void(uint32_t a, uint32_t b, TubeId tube)>& visit) = 0;
+
+  /// Visibility between elements `a` and `b` (on different patches), refining `parentTube`.
+  /// `seed` makes any sampling deterministic per link: equal inputs give equal answers.
+  virtual VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
+                                      uint64_t seed) = 0;
+};
+
+}  // namespace gv

@@ -1,0 +1,54 @@
+// Stratified jittered points on convex polygons. HSA91 §3 (visibility by jittered rays).
+#include "radiosity/polygon_sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace gv {
+
+uint64_t mixSeed(uint64_t a, uint64_t b, uint64_t c) {
+  SplitMix64 g(a ^ 0x243F6A8885A308D3ull);
+  uint64_t h = g.next() ^ b;
+  SplitMix64 g2(h);
+  h = g2.next() ^ c;
+  SplitMix64 g3(h);
+  return g3.next();
+}
+
+std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng) {
+  std::vector<Vec3> points;
+  if (count <= 0 || vertices.size() < 3) return points;
+  // Cumulative fan-triangle areas around vertex 0 (convex, so the fan covers the polygon).
+  const size_t triangles = vertices.size() - 2;
+  std::vector<double> cdf(triangles + 1, 0.0);
+  for (size_t k = 0; k < triangles; ++k)
+    cdf[k + 1] = cdf[k] + length(cross(vertices[k + 1] - vertices[0], vertices[k + 2] - vertices[0]));
+  const double total = cdf.back();
+  if (!(total > 0)) return std::vector<Vec3>(static_cast<size_t>(count), vertices[0]);
+
+  std::vector<int> permutation(static_cast<size_t>(count));
+  std::iota(permutation.begin(), permutation.end(), 0);
+  for (size_t i = permutation.size(); i > 1; --i)  // Fisher–Yates
+    std::swap(permutation[i - 1], permutation[static_cast<size_t>(rng.next() % i)]);
+
+  points.reserve(static_cast<size_t>(count));
+  const double n = static_cast<double>(count);
+  for (int i = 0; i < count; ++i) {
+    const double u1 = (i + rng.uniform()) / n * total;
+    const double u2 = (permutation[static_cast<size_t>(i)] + rng.uniform()) / n;
+    size_t k = static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(), u1) - cdf.begin());
+    k = std::clamp<size_t>(k, 1, triangles) - 1;
+    const double s = std::clamp((u1 - cdf[k]) / (cdf[k + 1] - cdf[k]), 0.0, 1.0);
+    // Uniform on the triangle (v0, vk+1, vk+2): sqrt warps the first coordinate so that equal
+    // strata get equal area.
+    const double a = std::sqrt(s);
+    const Vec3& p0 = vertices[0];
+    const Vec3& p1 = vertices[k + 1];
+    const Vec3& p2 = vertices[k + 2];
+    points.push_back(p0 * (1.0 - a) + (p1 * (1.0 - u2) + p2 * u2) * a);
+  }
+  return points;
+}
+
+}  // namespace gv

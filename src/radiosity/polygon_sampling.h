@@ -1,0 +1,41 @@
+// Stratified random points on convex polygons and a small deterministic generator: the sample
+// end points of visibility rays between two elements (HSA91 §3: "jittered" ray casting).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/vec3.h"
+
+namespace gv {
+
+/// SplitMix64 (Steele, Lea & Flood 2014): tiny, fast, and good enough for jittering samples.
+/// Deterministic: the same seed gives the same stream on every platform.
+class SplitMix64 {
+ public:
+  explicit SplitMix64(uint64_t seed) : state_(seed) {}
+  uint64_t next() {
+    uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  /// Uniform in [0, 1) with 53 random bits.
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+
+ private:
+  uint64_t state_;
+};
+
+/// Mixes values into one 64-bit seed (order matters).
+uint64_t mixSeed(uint64_t a, uint64_t b, uint64_t c = 0);
+
+/// `count` points on the convex polygon `vertices`, stratified as a Latin hypercube: the first
+/// coordinate (which picks the fan triangle by area, then the position across it) falls in
+/// stratum i of `count` for point i, the second in a random permutation of the strata, each
+/// jittered. Uniform in area for triangles and n-gons; for quads as well (the fan is used for
+/// every polygon). The points are strictly inside the polygon with probability 1.
+std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng);
+
+}  // namespace gv

@@ -1,0 +1,35 @@
+// HSA91's original visibility: every pair of patches that can face each other gets an initial
+// link, and a link's visibility is the fraction of N jittered rays between its two elements that
+// reach, tested against the whole scene (Embree). The baseline the paper's blocker lists beat.
+#pragma once
+
+#include "radiosity/link_visibility.h"
+#include "raycast/embree_scene.h"
+#include "scene/scene.h"
+
+namespace gv {
+
+/// `rays` mode. Visible when all rays reach, Invisible when none does (HSA91 then drops the link;
+/// a light path narrower than the ray spacing can be missed: the sampling error the paper's
+/// conservative blocker lists remove), Partial otherwise.
+class RayVisibility final : public LinkVisibility {
+ public:
+  /// `scene` and `rays` (the shared BVH) must outlive this. `raysPerLink` >= 1.
+  RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink);
+
+  std::string_view name() const override { return "rays"; }
+  /// All pairs a < b of the scene's patches (n(n-1)/2).
+  void forEachCandidatePair(
+      const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
+  /// raysPerLink segments between stratified points of a and of b (paired by a random
+  /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves.
+  VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
+                              uint64_t seed) override;
+
+ private:
+  const Scene& scene_;
+  const EmbreeScene& rays_;
+  int raysPerLink_;
+};
+
+}  // namespace gv
