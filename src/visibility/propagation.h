@@ -3,6 +3,8 @@
 // then blocker lists (paper §5). Output: the conservative VisibilityGraph.
 #pragma once
 
+#include <functional>
+
 #include "bsp/subdivision.h"
 #include "scene/scene.h"
 #include "visibility/visibility_graph.h"

@@ -142,6 +142,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     if (level.lpValid) {
       std::optional<LpVector> x = lp_.solve(kDim, rows_, c, lo, hi);
       if (x) level.optimum = *x; else level.lpValid = false;
+      level.optimal = true;
     }
     levels_.push_back(std::move(level));
     if (levels_.back().lpValid && options_.seekWitness) {
@@ -194,6 +195,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   }
   level.constraintEnd = rows_.size();
   level.optimum = prev.optimum;
+  level.optimal = prev.optimal;
   StabbingResult result = StabbingResult::Unresolved;
   if (level.lpValid) {
     result = testLp(level);
@@ -224,9 +226,35 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
   lo[kT] = -8 * kStabbingMaxGrazingSlope, hi[kT] = kStabbingMaxGrazingSlope;
   c[kT] = 1;
   const size_t first = levels_.back().constraintEnd;
-  std::optional<LpVector> x =
-      lp_.extend(kDim, std::span<const LpConstraint>(rows_.data(), level.constraintEnd), first,
-                 level.optimum, c, lo, hi);
+  const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
+  auto sizeOf = [](const LpVector& x) {
+    double size = 1;
+    for (int j = 0; j < kT; ++j) size = std::max(size, std::abs(x[j]));
+    return size;
+  };
+  // Lazy step: the previous point with t lowered to what the new rows allow is still an LP point.
+  // If that t is above the margin the answer is "not blocked" without solving anything (most
+  // pushes); only then is the point no longer known to be optimal.
+  {
+    LpVector x = level.optimum;
+    double t = x[kT];
+    for (size_t i = first; i < rows.size(); ++i) {
+      double rest = rows[i].b;
+      for (int j = 0; j < kT; ++j) rest -= rows[i].a[j] * x[j];
+      t = std::min(t, rest / rows[i].a[kT]);  // the t coefficient of every row is positive
+    }
+    if (t >= -kStabbingLpMargin * sizeOf(x)) {
+      level.optimal = level.optimal && t == x[kT];
+      x[kT] = t;
+      level.optimum = x;
+      return StabbingResult::Unresolved;
+    }
+  }
+  // Seidel's incremental step needs an optimal start; otherwise solve from scratch.
+  std::optional<LpVector> x = level.optimal
+                                  ? lp_.extend(kDim, rows, first, level.optimum, c, lo, hi)
+                                  : lp_.solve(kDim, rows, c, lo, hi);
+  level.optimal = true;
   if (!x) {
     // Cannot happen in exact arithmetic (the LP is feasible by construction): do not trust it.
     ++stats_.lpNumericalFailures;
@@ -234,9 +262,7 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
     return StabbingResult::Unresolved;
   }
   level.optimum = *x;
-  double size = 1;
-  for (int j = 0; j < kT; ++j) size = std::max(size, std::abs((*x)[j]));
-  if ((*x)[kT] < -kStabbingLpMargin * size) return StabbingResult::Blocked;
+  if ((*x)[kT] < -kStabbingLpMargin * sizeOf(*x)) return StabbingResult::Blocked;
   return StabbingResult::Unresolved;
 }
 

@@ -108,7 +108,8 @@ class PortalSequenceStabber {
     Winding clipped;        // after separating-plane clipping
     Winding source;         // the first portal as clipped by this level's plane (for later clips)
     size_t constraintEnd;   // LP rows of levels [0, this]
-    LpVector optimum;       // LP optimum with those rows
+    LpVector optimum;       // an LP point with those rows (t = its worst row)
+    bool optimal;           // whether `optimum` is known to be the LP optimum
     bool lpValid;           // false once the LP broke down (then everything is Unresolved)
   };
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "visibility/stabbing.h"
 
 namespace gv {
@@ -54,8 +56,8 @@ struct VisibilityGraph {
 
 /// Writes `visibility.txt` in the paper's format (DESIGN.md contract): `S R n b1 ... bn`.
 void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path);
-/// Writes the statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
-void writeVisibilityStats(const VisibilityGraph& graph, const std::string& path);
+/// The statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
+nlohmann::json visibilityStatsJson(const VisibilityStats& stats);
 /// Reads a visibility.txt back (for `verify`); throws InputError on malformed lines.
 VisibilityGraph readVisibilityTxt(const std::string& path);
 

@@ -1,0 +1,87 @@
+// `globalvis pvs MAP.prt -o PVS.txt`: the potentially visible set of a Quake portal file by
+// stabbing-line search over portal sequences (paper §4 applied to qbsp's leafs), written one line
+// per leaf: `L n v1 ... vn` (0-based leaf ids, ascending, L itself included).
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "cli/commands.h"
+#include "quake/leaf_pvs.h"
+#include "quake/prt_file.h"
+#include "scene/input_error.h"
+
+namespace gv::cli {
+
+Action addPvsCommand(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "pvs", "Leaf-to-leaf potentially visible set of a Quake portal file (.prt, PRT1 or PRT2); "
+             "writes one line per leaf: L n v1 ... vn");
+  struct State {
+    std::string input, output;
+    bool serial = false, quiet = false, noLp = false;
+  };
+  auto s = std::make_shared<State>();
+  cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
+  cmd->add_option("-o,--output", s->output, "PVS text file to write")->required();
+  cmd->add_flag("--serial", s->serial, "One thread (the output is the same either way)");
+  cmd->add_flag("-q,--quiet", s->quiet, "No progress on stderr");
+  cmd->add_flag("--no-lp", s->noLp,
+                "Decide by separating-plane clipping only (faster, looser; still conservative)");
+  return [s] {
+    const auto t0 = std::chrono::steady_clock::now();
+    auto elapsed = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    const PrtFile prt = readPrtFile(s->input);
+    LeafPvsOptions options;
+    options.parallel = !s->serial;
+    options.stabbing.useLinearProgram = !s->noLp;
+    double lastReport = 0;
+    if (!s->quiet) {
+      // At most one line every 2 seconds, and only on runs long enough to need it.
+      options.progress = [&](size_t done, size_t total) {
+        const double t = elapsed();
+        if (t - lastReport < 2.0 || done == total) return;
+        lastReport = t;
+        fmt::print(stderr, "pvs: {}/{} directed portals searched, {:.0f} s\n", done, total, t);
+      };
+    }
+    const LeafPvsResult pvs = computeLeafPvs(prt, options);
+
+    std::FILE* out = std::fopen(s->output.c_str(), "w");
+    if (!out) throw InputError(s->output, 0, "cannot write");
+    std::string line;
+    for (size_t l = 0; l < pvs.visibleLeafs.size(); ++l) {
+      const auto& row = pvs.visibleLeafs[l];
+      line = fmt::format("{} {}", l, row.size());
+      for (uint32_t v : row) fmt::format_to(std::back_inserter(line), " {}", v);
+      line += '\n';
+      std::fputs(line.c_str(), out);
+    }
+    const bool ok = std::ferror(out) == 0;
+    if (std::fclose(out) != 0 || !ok) throw InputError(s->output, 0, "cannot write");
+
+    const StabbingStats& st = pvs.stabbing;
+    fmt::print("PRT{}: leafs {}  clusters {}  portals {}\n", prt.version, pvs.leafCount,
+               pvs.clusterCount, pvs.portalCount);
+    fmt::print("mean leafs visible {:.1f}  (might-see flood: {:.1f} clusters per cluster)\n",
+               pvs.meanLeafsVisible, pvs.meanClustersMightSee);
+    fmt::print("sequences {}  stabbing tests {}: blocked by clipping {}, by LP {}; "
+               "stabbed {}, unresolved (kept) {}\n",
+               pvs.sequencesSearched, st.tests, st.blockedByClipping, st.blockedByLp, st.stabbed,
+               st.unresolved);
+    if (st.lpNumericalFailures || st.degeneratePortals || pvs.oneSidedPairsDropped ||
+        prt.selfPortalsSkipped)
+      fmt::print("LP breakdowns {}  degenerate portals {}  one-sided pairs dropped {}  "
+                 "self portals skipped {}\n",
+                 st.lpNumericalFailures, st.degeneratePortals, pvs.oneSidedPairsDropped,
+                 prt.selfPortalsSkipped);
+    fmt::print("seconds {:.2f} (flood {:.2f}, search {:.2f}); wrote {}\n", elapsed(),
+               pvs.floodSeconds, pvs.searchSeconds, s->output);
+    return 0;
+  };
+}
+
+}  // namespace gv::cli

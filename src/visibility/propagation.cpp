@@ -1,0 +1,460 @@
+// Visibility propagation (paper §4.1–4.2) and blocker detection (§5).
+//
+// Cell level: from every cell, a depth-first search over portal sequences, each step kept only
+// while the sequence admits a stabbing line; reached cells are the cells it may see.
+// Patch level: from every patch S, the same search with S's piece in its cell prefixed to the
+// sequence (a tighter start than the whole cell). In every reached cell each patch T is tested as
+// the sequence's last "portal", crossed the way a sightline would cross it; T is then "seen" from
+// S, and "seen from the front" when the sightline meets T's front. Pairs seen front to front
+// (from either end) interact. Their blockers are the patches seen from S or from T that meet
+// conv(S, T): the first patch a segment from S meets lies in a cell the search reached through
+// the portals that segment crossed, and the segment crosses that patch after those portals, so
+// the search saw it (stabbing is never "no" when a line exists).
+#include "visibility/propagation.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <deque>
+#include <mutex>
+#include <thread>
+
+#include "visibility/hull_overlap.h"
+#include "visibility/might_see.h"
+
+namespace gv {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
+struct CellPatch {
+  uint32_t patch = 0;
+  ConvexPolygon piece;
+  bool facesIn = false;   ///< the front looks into the cell
+  bool interior = false;  ///< lies inside the cell: sightlines may meet either side
+  bool whole = false;     ///< the piece is the whole patch
+};
+
+/// The part of p within the cell, grown by the BSP's plane-merging tolerance so that pieces moved
+/// onto merged planes are never lost (a larger piece only makes the search see more).
+std::optional<ConvexPolygon> clipToCell(const ConvexPolygon& p, const ConvexPolyhedron& cell,
+                                        const Tolerance& tol) {
+  std::optional<ConvexPolygon> cur = p;
+  const double slack = tol.planeOffset();
+  for (const Plane& h : cell.halfspaces) {
+    cur = clipToFront(*cur, Plane{-h.normal, -h.offset - slack}, tol);  // keep h.distance <= slack
+    if (!cur) return std::nullopt;
+  }
+  return cur;
+}
+
+/// Some vertex of `b` strictly in front of `a`'s plane, and vice versa: only such pairs can
+/// exchange light front to front.
+bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps) {
+  auto someInFront = [eps](const ConvexPolygon& of, const ConvexPolygon& plane) {
+    for (const Vec3& v : of.vertices)
+      if (plane.plane.distance(v) > eps) return true;
+    return false;
+  };
+  return someInFront(b, a) && someInFront(a, b);
+}
+
+/// Seen flags of one source patch.
+enum : uint8_t { kSeen = 1, kSeenFront = 2 };
+
+/// The flags a search can give a patch through this piece of it.
+uint8_t attainable(const CellPatch& cp) {
+  return (cp.facesIn || cp.interior) ? (kSeen | kSeenFront) : kSeen;
+}
+
+struct PatchSearchResult {
+  std::vector<std::pair<uint32_t, uint8_t>> seen;  ///< (patch, flags), sorted by patch
+  std::vector<uint32_t> sameCellVisible;           ///< patches proven VISIBLE by the shortcut
+  StabbingStats stabbing;
+};
+
+using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
+
+/// Per-thread state of the patch-level search. Beyond the stabbing test it prunes a branch when
+/// every cell the branch might still reach (MightSee) holds only patches already seen in every
+/// way they can be seen: the search's only output is those flags, so nothing is lost.
+class PatchSearch {
+ public:
+  PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
+              const Placements& placements, const MightSee& might, const Tolerance& tol)
+      : sub_(sub), cellPatches_(cellPatches), placements_(placements), might_(might),
+        stabber_(tol), flags_(placements.size(), 0), onPath_(sub.cells.size(), 0),
+        unsaturatedCount_(sub.cells.size(), 0), unsaturated_(sub.cells.size()) {
+    for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+      baseCount_.push_back(static_cast<uint32_t>(cellPatches[c].size()));
+      if (!cellPatches[c].empty()) unsaturated_.insert(c);
+    }
+    unsaturatedCount_ = baseCount_;
+  }
+
+  PatchSearchResult run(uint32_t s) {
+    PatchSearchResult result;
+    stabber_.resetStats();
+    source_ = s;
+    // The source's own pieces are never targets: they count as saturated.
+    for (auto [cell, k] : placements_[s]) decrement(cell);
+    for (auto [cell, k] : placements_[s]) {
+      const CellPatch& cp = cellPatches_[cell][k];
+      if (!cp.facesIn && !cp.interior) continue;  // S's front does not look into this cell
+      stabber_.clear();
+      if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
+      const bool cellEmpty = sub_.cells[cell].interiorPatches.empty();
+      if (cp.whole && cellEmpty) {
+        for (const CellPatch& t : cellPatches_[cell])
+          if (t.patch != s && t.whole && t.facesIn) result.sameCellVisible.push_back(t.patch);
+      }
+      visit(cell, 0, nullptr);
+    }
+    for (uint32_t t : touched_) {
+      result.seen.emplace_back(t, flags_[t]);
+      flags_[t] = 0;
+    }
+    touched_.clear();
+    for (uint32_t c : touchedCells_) {
+      unsaturatedCount_[c] = baseCount_[c];
+      if (baseCount_[c] > 0) unsaturated_.insert(c);
+    }
+    touchedCells_.clear();
+    std::sort(result.seen.begin(), result.seen.end());
+    std::sort(result.sameCellVisible.begin(), result.sameCellVisible.end());
+    result.sameCellVisible.erase(std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
+                                 result.sameCellVisible.end());
+    result.stabbing = stabber_.stats();
+    return result;
+  }
+
+ private:
+  void decrement(uint32_t cell) {
+    if (unsaturatedCount_[cell] == baseCount_[cell]) touchedCells_.push_back(cell);
+    if (--unsaturatedCount_[cell] == 0) unsaturated_.erase(cell);
+  }
+
+  void mark(uint32_t t, uint8_t f) {
+    const uint8_t before = flags_[t];
+    const uint8_t after = before | f;
+    if (after == before) return;
+    if (before == 0) touched_.push_back(t);
+    flags_[t] = after;
+    for (auto [cell, k] : placements_[t]) {
+      const uint8_t need = attainable(cellPatches_[cell][k]);
+      if ((before & need) != need && (after & need) == need) decrement(cell);
+    }
+  }
+
+  /// Tests T crossed the way a sightline arriving from inside the cell crosses it.
+  void testTarget(const CellPatch& t) {
+    if (t.patch == source_) return;
+    const uint8_t have = flags_[t.patch];
+    // Front hit: the line crosses T from its front to its back (loop reversed = travel normal).
+    if ((t.facesIn || t.interior) && !(have & kSeenFront)) {
+      scratch_.assign(t.piece.vertices.rbegin(), t.piece.vertices.rend());
+      if (stabber_.push(scratch_) != StabbingResult::Blocked) {
+        mark(t.patch, kSeen | kSeenFront);
+        stabber_.pop();
+      }
+    }
+    if ((!t.facesIn || t.interior) && !(flags_[t.patch] & kSeen)) {
+      if (stabber_.push(t.piece.vertices) != StabbingResult::Blocked) {
+        mark(t.patch, kSeen);
+        stabber_.pop();
+      }
+    }
+  }
+
+  /// `reach`: the cells this branch may still reach (null: all).
+  void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    onPath_[cell] = 1;
+    for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
+    if (stack_.size() <= depth) stack_.resize(depth + 1);
+    for (uint32_t pid : sub_.cells[cell].portals) {
+      const Portal& p = sub_.portals[pid];
+      const uint32_t next = p.other(cell);
+      if (onPath_[next]) continue;  // a line cannot enter a convex cell twice
+      const bool forward = p.front == next;
+      const CellSet& through = might_.through(pid, forward);
+      CellSet& nextReach = stack_[depth];
+      if (reach) nextReach.assignIntersection(*reach, through);
+      const CellSet& r = reach ? nextReach : through;
+      if (!r.intersects(unsaturated_)) continue;  // nothing new can be seen that way
+      if (forward) {
+        scratch_ = p.polygon.vertices;
+      } else {
+        scratch_.assign(p.polygon.vertices.rbegin(), p.polygon.vertices.rend());
+      }
+      if (stabber_.push(scratch_) == StabbingResult::Blocked) continue;
+      visit(next, depth + 1, &r);
+      stabber_.pop();
+    }
+    onPath_[cell] = 0;
+  }
+
+  const Subdivision& sub_;
+  const std::vector<std::vector<CellPatch>>& cellPatches_;
+  const Placements& placements_;
+  const MightSee& might_;
+  PortalSequenceStabber stabber_;
+  std::vector<uint8_t> flags_;
+  std::vector<uint32_t> touched_, touchedCells_;
+  std::vector<uint8_t> onPath_;
+  std::vector<uint32_t> baseCount_, unsaturatedCount_;
+  CellSet unsaturated_;
+  std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
+  std::vector<Vec3> scratch_;
+  uint32_t source_ = 0;
+};
+
+/// Cell-to-cell search from one source cell: counts and the Fig. 13 histogram.
+struct CellSearchResult {
+  uint64_t reached = 0, tests = 0, lengthSum = 0;
+  SequenceHistogram histogram;
+};
+
+/// The cell-level search, pruned like PatchSearch: a branch stops when every cell it might still
+/// reach is already known to be visible from the source.
+class CellSearch {
+ public:
+  CellSearch(const Subdivision& sub, const MightSee& might, const Tolerance& tol)
+      : sub_(sub), might_(might), stabber_(tol), onPath_(sub.cells.size(), 0) {}
+
+  CellSearchResult run(uint32_t source) {
+    result_ = {};
+    unreached_ = CellSet(sub_.cells.size(), true);
+    stabber_.clear();
+    unreached_.erase(source);
+    result_.reached = 1;
+    visit(source, 0, nullptr);
+    return result_;
+  }
+
+ private:
+  void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    onPath_[cell] = 1;
+    if (stack_.size() <= depth) stack_.resize(depth + 1);
+    for (uint32_t pid : sub_.cells[cell].portals) {
+      const Portal& p = sub_.portals[pid];
+      const uint32_t next = p.other(cell);
+      if (onPath_[next]) continue;
+      const bool forward = p.front == next;
+      const CellSet& through = might_.through(pid, forward);
+      CellSet& nextReach = stack_[depth];
+      if (reach) nextReach.assignIntersection(*reach, through);
+      const CellSet& r = reach ? nextReach : through;
+      if (!r.intersects(unreached_)) continue;
+      if (forward) {
+        scratch_ = p.polygon.vertices;
+      } else {
+        scratch_.assign(p.polygon.vertices.rbegin(), p.polygon.vertices.rend());
+      }
+      const StabbingResult res = stabber_.push(scratch_);
+      const size_t length = stabber_.depth() + (res == StabbingResult::Blocked ? 1 : 0);
+      ++result_.tests;
+      result_.lengthSum += length;
+      result_.histogram.add(length, res != StabbingResult::Blocked);
+      if (res == StabbingResult::Blocked) continue;
+      if (unreached_.contains(next)) {
+        unreached_.erase(next);
+        ++result_.reached;
+      }
+      visit(next, depth + 1, &r);
+      stabber_.pop();
+    }
+    onPath_[cell] = 0;
+  }
+
+  const Subdivision& sub_;
+  const MightSee& might_;
+  PortalSequenceStabber stabber_;
+  std::vector<uint8_t> onPath_;
+  CellSet unreached_;
+  std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
+  std::vector<Vec3> scratch_;
+  CellSearchResult result_;
+};
+
+/// Runs fn(worker, index) for index in [0, n) on `threads` workers; each index exactly once.
+template <typename MakeWorker, typename Fn>
+void parallelFor(size_t n, int threads, MakeWorker makeWorker, Fn fn) {
+  std::atomic<size_t> next{0};
+  auto body = [&] {
+    auto worker = makeWorker();
+    for (size_t i = next++; i < n; i = next++) fn(worker, i);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(body);
+  body();
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace
+
+void SequenceHistogram::add(size_t length, bool success) {
+  auto& v = success ? successes : failures;
+  if (successes.size() <= length) successes.resize(length + 1, 0);
+  if (failures.size() <= length) failures.resize(length + 1, 0);
+  ++v[length];
+}
+
+SequenceHistogram& SequenceHistogram::operator+=(const SequenceHistogram& o) {
+  successes.resize(std::max(successes.size(), o.successes.size()), 0);
+  failures.resize(std::max(failures.size(), o.failures.size()), 0);
+  for (size_t i = 0; i < o.successes.size(); ++i) successes[i] += o.successes[i];
+  for (size_t i = 0; i < o.failures.size(); ++i) failures[i] += o.failures[i];
+  return *this;
+}
+
+VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
+                                  const PropagationOptions& options) {
+  const auto start = Clock::now();
+  const Tolerance tol = sub.tree.tol;
+  const size_t n = scene.patches.size();
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  VisibilityGraph graph;
+  VisibilityStats& st = graph.stats;
+  st.patches = n;
+  st.cells = sub.cells.size();
+  st.portals = sub.portals.size();
+  st.threads = threads;
+
+  const MightSee might(sub, tol);
+
+  // Cell to cell (§4.1).
+  std::vector<CellSearchResult> cellResults(sub.cells.size());
+  parallelFor(
+      sub.cells.size(), threads, [&] { return CellSearch(sub, might, tol); },
+      [&](CellSearch& w, size_t c) { cellResults[c] = w.run(static_cast<uint32_t>(c)); });
+  uint64_t lengthSum = 0;
+  for (const CellSearchResult& r : cellResults) {
+    st.cellPairsVisible += r.reached;
+    st.cellStabbingTests += r.tests;
+    lengthSum += r.lengthSum;
+    st.cellHistogram += r.histogram;
+  }
+  st.meanSequenceLength = st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
+  st.cellSeconds = secondsSince(start);
+
+  // Pieces of patches per cell, and where each patch lies.
+  const auto patchStart = Clock::now();
+  std::vector<std::vector<CellPatch>> cellPatches(sub.cells.size());
+  Placements placements(n);
+  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+    const Cell& cell = sub.cells[c];
+    const Vec3 inside = cell.shape.centroid();
+    for (uint32_t p : cell.patches) {
+      const ConvexPolygon& poly = scene.patches[p].polygon;
+      auto piece = clipToCell(poly, cell.shape, tol);
+      if (!piece) continue;
+      CellPatch cp;
+      cp.patch = p;
+      cp.interior = std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
+      cp.facesIn = poly.plane.distance(inside) > 0;
+      cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
+      cp.piece = std::move(*piece);
+      placements[p].emplace_back(c, cellPatches[c].size());
+      cellPatches[c].push_back(std::move(cp));
+    }
+  }
+
+  // Patch searches (§4.2).
+  std::vector<PatchSearchResult> seen(n);
+  std::atomic<size_t> done{0};
+  std::mutex progressMutex;
+  parallelFor(
+      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, might, tol); },
+      [&](PatchSearch& w, size_t s) {
+        seen[s] = w.run(static_cast<uint32_t>(s));
+        const size_t d = ++done;
+        if (options.progress && (d % 256 == 0 || d == n)) {
+          std::lock_guard lock(progressMutex);
+          options.progress(d, n);
+        }
+      });
+  StabbingStats stabbing;
+  for (const PatchSearchResult& r : seen) stabbing += r.stabbing;
+  st.patchStabbingTests = stabbing.tests;
+  st.unresolvedStabbing = stabbing.unresolved + stabbing.lpNumericalFailures;
+  st.patchSeconds = secondsSince(patchStart);
+
+  // Interactions and blockers (§5).
+  const auto blockerStart = Clock::now();
+  auto flagsOf = [&](uint32_t s, uint32_t t) -> uint8_t {
+    const auto& v = seen[s].seen;
+    auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(t, uint8_t{0}));
+    return (it != v.end() && it->first == t) ? it->second : 0;
+  };
+  auto isSameCellVisible = [&](uint32_t s, uint32_t t) {
+    const auto& v = seen[s].sameCellVisible;
+    return std::binary_search(v.begin(), v.end(), t);
+  };
+  std::vector<std::vector<Interaction>> perSource(n);
+  parallelFor(
+      n, threads, [] { return 0; },
+      [&](int&, size_t si) {
+        const auto s = static_cast<uint32_t>(si);
+        const ConvexPolygon& sp = scene.patches[s].polygon;
+        for (const auto& [t, f] : seen[s].seen) {
+          if (t <= s) continue;
+          const bool front = (f & kSeenFront) || (flagsOf(t, s) & kSeenFront);
+          const ConvexPolygon& tp = scene.patches[t].polygon;
+          if (!front || !canFace(sp, tp, tol.length())) continue;
+          Interaction in{s, t, {}};
+          if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
+            const auto& a = seen[s].seen;
+            const auto& b = seen[t].seen;
+            std::vector<uint32_t> candidates;
+            candidates.reserve(a.size() + b.size());
+            for (const auto& e : a) candidates.push_back(e.first);
+            for (const auto& e : b) candidates.push_back(e.first);
+            std::sort(candidates.begin(), candidates.end());
+            candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+            for (uint32_t c : candidates)
+              if (c != s && c != t && meetsConvexHull(scene.patches[c].polygon, sp, tp, tol))
+                in.blockers.push_back(c);
+          }
+          perSource[s].push_back(std::move(in));
+        }
+      });
+  for (auto& v : perSource)
+    for (Interaction& in : v) graph.interactions.push_back(std::move(in));
+  uint64_t blockerSum = 0;
+  for (const Interaction& in : graph.interactions) {
+    if (in.blockers.empty()) {
+      ++st.pairsVisible;
+    } else {
+      ++st.pairsPartial;
+      blockerSum += in.blockers.size();
+    }
+    st.sameCellShortcuts += in.blockers.empty() && (isSameCellVisible(in.s, in.r) || isSameCellVisible(in.r, in.s));
+  }
+  st.meanBlockersPerPartial = st.pairsPartial ? double(blockerSum) / double(st.pairsPartial) : 0;
+  st.blockerSeconds = secondsSince(blockerStart);
+
+  // Shaft-culling baseline (Haines & Wallace): every patch meeting conv(S, R), on a sample.
+  if (st.pairsPartial > 0 && options.shaftSamples > 0) {
+    const uint64_t stride = std::max<uint64_t>(1, st.pairsPartial / options.shaftSamples);
+    uint64_t k = 0, sum = 0;
+    for (const Interaction& in : graph.interactions) {
+      if (in.blockers.empty() || (k++ % stride) != 0) continue;
+      const ConvexPolygon& sp = scene.patches[in.s].polygon;
+      const ConvexPolygon& rp = scene.patches[in.r].polygon;
+      for (uint32_t c = 0; c < n; ++c)
+        if (c != in.s && c != in.r && meetsConvexHull(scene.patches[c].polygon, sp, rp, tol)) ++sum;
+      ++st.shaftSamples;
+    }
+    st.meanShaftCullPerPartial = double(sum) / double(st.shaftSamples);
+  }
+  st.seconds = secondsSince(start);
+  return graph;
+}
+
+}  // namespace gv

@@ -1,0 +1,83 @@
+// visibility.txt (the paper's §7.3 file format) and stats.json for a VisibilityGraph.
+#include "visibility/visibility_graph.h"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "scene/input_error.h"
+
+namespace gv {
+
+void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path) {
+  try {
+    auto out = fmt::output_file(path);
+    out.print("# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");
+    out.print("# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n");
+    for (const Interaction& in : graph.interactions) {
+      out.print("{} {} {}", in.s, in.r, in.blockers.size());
+      for (uint32_t b : in.blockers) out.print(" {}", b);
+      out.print("\n");
+    }
+  } catch (const std::system_error& e) {
+    throw InputError(path, 0, std::string("cannot write: ") + e.what());
+  }
+}
+
+nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
+  const double pairs = double(s.patches) * double(s.patches > 0 ? s.patches - 1 : 0) / 2;
+  const uint64_t listed = s.pairsVisible + s.pairsPartial;
+  return {
+      {"patches", s.patches},
+      {"cells", s.cells},
+      {"portals", s.portals},
+      {"patch_pairs", pairs},
+      {"pairs_listed", listed},
+      {"pairs_listed_percent", pairs > 0 ? 100.0 * double(listed) / pairs : 0.0},
+      {"pairs_visible", s.pairsVisible},
+      {"pairs_partial", s.pairsPartial},
+      {"partial_percent_of_listed", listed ? 100.0 * double(s.pairsPartial) / double(listed) : 0.0},
+      {"same_cell_shortcuts", s.sameCellShortcuts},
+      {"cell_pairs_visible", s.cellPairsVisible},
+      {"cell_stabbing_tests", s.cellStabbingTests},
+      {"patch_stabbing_tests", s.patchStabbingTests},
+      {"unresolved_stabbing_tests", s.unresolvedStabbing},
+      {"mean_sequence_length", s.meanSequenceLength},
+      {"fig13_successes_by_length", s.cellHistogram.successes},
+      {"fig13_failures_by_length", s.cellHistogram.failures},
+      {"mean_blockers_per_partial", s.meanBlockersPerPartial},
+      {"mean_shaft_cull_per_partial", s.meanShaftCullPerPartial},
+      {"shaft_cull_sampled_pairs", s.shaftSamples},
+      {"seconds", {{"total", s.seconds}, {"cells", s.cellSeconds}, {"patches", s.patchSeconds},
+                   {"blockers", s.blockerSeconds}}},
+      {"threads", s.threads},
+      {"paper", {{"patches", 403}, {"pairs_listed", 4391}, {"pairs_listed_percent", 5.4},
+                 {"partial_percent_of_listed", 64.1}, {"cell_stabbing_tests", 10128},
+                 {"patch_stabbing_tests", 16055}, {"mean_sequence_length", 5},
+                 {"mean_blockers_per_partial", 5}, {"cpu_seconds", 300}}}};
+}
+
+VisibilityGraph readVisibilityTxt(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot be opened for reading");
+  VisibilityGraph g;
+  std::string line;
+  for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    Interaction it;
+    size_t count = 0;
+    if (!(ss >> it.s >> it.r >> count) || it.s >= it.r)
+      throw InputError(path, lineNo, "expected `S R n b1 ... bn` with S < R");
+    it.blockers.resize(count);
+    for (uint32_t& b : it.blockers)
+      if (!(ss >> b)) throw InputError(path, lineNo, "fewer blockers than n");
+    g.interactions.push_back(std::move(it));
+  }
+  return g;
+}
+
+}  // namespace gv
