@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   add(gv::cli::addGenCommand);
   add(gv::cli::addCellsCommand);
   add(gv::cli::addRadiosityCommand);
+  add(gv::cli::addVisCommand);
+  add(gv::cli::addPvsCommand);
   CLI::App* help = app.add_subcommand("help", "List the subcommands");
 
   try {
