@@ -2,6 +2,9 @@
 // (never a crash: a signal would show as exit code -1 here).
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
 
@@ -68,6 +71,34 @@ TEST(CliBadInput, UnknownOptionAndSubcommand) {
   r = runCli("");
   EXPECT_EQ(r.exitCode, 1);
   EXPECT_NE(r.output.find("subcommand"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace gv
+
+namespace gv {
+namespace {
+
+TEST(Cli, VisWritesTheContractFiles) {
+  const auto dir = test::scratchDir();
+  ASSERT_EQ(test::runCli("gen cornell -o '" + (dir / "c.obj").string() + "'").exitCode, 0);
+  const auto r = test::runCli("vis '" + (dir / "c.obj").string() + "' -o '" + (dir / "out").string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* f : {"patches.obj", "patches.mtl", "visibility.txt", "stats.json"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;
+  std::ifstream in(dir / "out" / "visibility.txt");
+  size_t lines = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    uint32_t s = 0, t = 0;
+    size_t n = 0;
+    ASSERT_TRUE(ss >> s >> t >> n) << line;
+    EXPECT_LT(s, t);
+    EXPECT_LT(t, 19u);  // the Cornell box has 19 patches
+    ++lines;
+  }
+  EXPECT_GT(lines, 10u);
 }
 
 }  // namespace

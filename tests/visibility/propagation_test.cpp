@@ -1,0 +1,213 @@
+// Visibility propagation and blocker lists checked against brute-force ray casting (ray_oracle.h):
+// no visible pair may be missing (a light leak), VISIBLE pairs must be unblocked, and the first
+// patch a blocked segment meets must be in the pair's blocker list.
+#include "visibility/propagation.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "generators/cornell_box.h"
+#include "generators/maze.h"
+#include "generators/office.h"
+#include "generators/scene_builder.h"
+#include "visibility/ray_oracle.h"
+
+namespace gv {
+namespace {
+
+using test::cosineDirection;
+using test::firstHit;
+using test::randomPointOn;
+
+struct Checked {
+  size_t raysToFront = 0, missingPairs = 0;
+  size_t segments = 0, blockedSegments = 0, visibleViolations = 0, blockerViolations = 0;
+};
+
+std::map<std::pair<uint32_t, uint32_t>, const Interaction*> indexOf(const VisibilityGraph& g) {
+  std::map<std::pair<uint32_t, uint32_t>, const Interaction*> m;
+  for (const Interaction& in : g.interactions) m[{in.s, in.r}] = &in;
+  return m;
+}
+
+/// The verification of DESIGN.md's contract by sampling.
+Checked verifyBySampling(const Scene& scene, const VisibilityGraph& g, int rays, int segments,
+                         uint32_t seed) {
+  Checked c;
+  const auto index = indexOf(g);
+  std::mt19937 rng(seed);
+  const double reach = 10 * scene.bounds().diagonal();
+  const double eps = 1e-9 * scene.bounds().diagonal();
+  std::uniform_int_distribution<uint32_t> pickPatch(0, uint32_t(scene.patches.size() - 1));
+  // Rays from random points of random patches: a front hit requires the pair to be listed.
+  for (int i = 0; i < rays; ++i) {
+    const uint32_t s = pickPatch(rng);
+    const ConvexPolygon& sp = scene.patches[s].polygon;
+    const Vec3 o = randomPointOn(sp, rng);
+    const Vec3 d = cosineDirection(sp.normal(), rng);
+    const auto hit = firstHit(scene, o, d, eps, reach, s);
+    if (!hit || !hit->front) continue;
+    ++c.raysToFront;
+    const auto key = std::minmax(s, hit->patch);
+    if (!index.count({key.first, key.second})) ++c.missingPairs;
+  }
+  // Segments between listed pairs: VISIBLE ones unblocked; the first patch met from either end
+  // of a blocked one is a blocker.
+  if (g.interactions.empty()) return c;
+  std::uniform_int_distribution<size_t> pickPair(0, g.interactions.size() - 1);
+  for (int i = 0; i < segments; ++i) {
+    const Interaction& in = g.interactions[pickPair(rng)];
+    const ConvexPolygon& sp = scene.patches[in.s].polygon;
+    const ConvexPolygon& rp = scene.patches[in.r].polygon;
+    const Vec3 p = randomPointOn(sp, rng), q = randomPointOn(rp, rng);
+    if (sp.plane.distance(q) <= eps || rp.plane.distance(p) <= eps) continue;  // not front to front
+    ++c.segments;
+    const Vec3 d = q - p;
+    const auto fromS = firstHit(scene, p, d, 1e-9, 1 - 1e-9, in.s);
+    const auto fromR = firstHit(scene, q, p - q, 1e-9, 1 - 1e-9, in.r);
+    if (fromS && fromS->patch == in.r) continue;  // grazing its own receiver: not a blocker
+    if (!fromS) continue;
+    ++c.blockedSegments;
+    if (in.blockers.empty()) {
+      ++c.visibleViolations;
+      continue;
+    }
+    for (const auto& h : {fromS, fromR})
+      if (h && h->patch != in.s && h->patch != in.r &&
+          !std::binary_search(in.blockers.begin(), in.blockers.end(), h->patch))
+        ++c.blockerViolations;
+  }
+  return c;
+}
+
+void expectConservative(const Scene& scene, int rays, int segments, uint32_t seed,
+                        BspOptions bsp = {}) {
+  const Subdivision sub = buildSubdivision(scene, bsp);
+  const VisibilityGraph g = computeVisibility(scene, sub);
+  const Checked c = verifyBySampling(scene, g, rays, segments, seed);
+  EXPECT_GT(c.raysToFront, size_t(rays) / 4);  // the sampling is not vacuous
+  EXPECT_EQ(c.missingPairs, 0u) << "light leak: a sampled sightline's pair is not listed";
+  EXPECT_EQ(c.visibleViolations, 0u) << "a VISIBLE pair has a blocked segment";
+  EXPECT_EQ(c.blockerViolations, 0u) << "a blocked segment's first patch is not a blocker";
+  EXPECT_GT(c.segments, 0u);
+  for (const Interaction& in : g.interactions) {
+    EXPECT_LT(in.s, in.r);
+    EXPECT_TRUE(std::is_sorted(in.blockers.begin(), in.blockers.end()));
+  }
+}
+
+TEST(Propagation, TwoFacingQuadsInAnEmptyBoxAreVisible) {
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{10});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  b.addAxisRect(2, true, {0, 0, 0}, {1, 1, 0}, m);   // floor facing up
+  b.addAxisRect(2, false, {0, 0, 1}, {1, 1, 1}, m);  // ceiling facing down
+  const Subdivision sub = buildSubdivision(scene);
+  const VisibilityGraph g = computeVisibility(scene, sub);
+  ASSERT_EQ(g.interactions.size(), 1u);
+  EXPECT_EQ(g.interactions[0].status(), PairStatus::Visible);
+}
+
+TEST(Propagation, ABlockerBetweenMakesThePairPartial) {
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{10});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  b.addAxisRect(2, true, {0, 0, 0}, {2, 2, 0}, m);                  // 0: floor facing up
+  b.addAxisRect(2, false, {0, 0, 2}, {2, 2, 2}, m);                 // 1: ceiling facing down
+  b.addAxisRect(2, false, {0.5, 0.5, 1}, {1.5, 1.5, 1}, m);         // 2: plate facing down
+  const Subdivision sub = buildSubdivision(scene);
+  const VisibilityGraph g = computeVisibility(scene, sub);
+  const auto index = indexOf(g);
+  ASSERT_TRUE(index.count({0, 1}));
+  EXPECT_EQ(index.at({0, 1})->blockers, std::vector<uint32_t>{2});
+  ASSERT_TRUE(index.count({0, 2}));  // the plate's front looks at the floor
+  EXPECT_FALSE(index.count({1, 2}));  // the plate's back faces the ceiling
+}
+
+/// Six inward-facing rectangles: a closed room [lo, hi] seen from inside.
+void addRoom(SceneBuilder& b, const Vec3& lo, const Vec3& hi, uint32_t m) {
+  for (int axis = 0; axis < 3; ++axis) {
+    Vec3 top = hi, bottom = lo;
+    top[axis] = lo[axis];
+    bottom[axis] = hi[axis];
+    b.addAxisRect(axis, true, lo, top, m);      // the wall at lo[axis], facing into the room
+    b.addAxisRect(axis, false, bottom, hi, m);  // the wall at hi[axis], facing into the room
+  }
+}
+
+TEST(Propagation, SealedRoomNextToALitRoomSeesNothingOfIt) {
+  // Two closed rooms 0.2 apart; the lit one holds a light panel. Every patch of one room faces
+  // only that room's inside, so no pair may cross between the rooms.
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{10});
+  const uint32_t grey = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  const uint32_t light = scene.addMaterial({"light", {0.8, 0.8, 0.8}, {5, 5, 5}});
+  addRoom(b, {0, 0, 0}, {4, 4, 3}, grey);
+  b.addAxisRect(2, false, {1.5, 1.5, 2.9}, {2.5, 2.5, 2.9}, light);
+  const size_t litRoomPatches = scene.patches.size();
+  addRoom(b, {4.2, 0, 0}, {8.2, 4, 3}, grey);
+  const Subdivision sub = buildSubdivision(scene);
+  const VisibilityGraph g = computeVisibility(scene, sub);
+  size_t within = 0;
+  for (const Interaction& in : g.interactions) {
+    const bool a = in.s < litRoomPatches, c = in.r < litRoomPatches;
+    EXPECT_EQ(a, c) << "patches " << in.s << " and " << in.r << " see each other through a wall";
+    within += a == c;
+    for (uint32_t blocker : in.blockers) EXPECT_EQ(blocker < litRoomPatches, a);
+  }
+  // Inside each room: every wall sees the 4 walls next to it and the one opposite (the lit room's
+  // light panel sees the 5 walls below and around it).
+  EXPECT_EQ(within, 15u + 5u + 15u);
+}
+
+TEST(PropagationRays, CornellBox) { expectConservative(generateCornellBox(), 20000, 4000, 1); }
+
+TEST(PropagationRays, SmallOfficeNoFurniture) {
+  // Every patch plane splits (the default stop rule); furniture would multiply the free-space
+  // cells and the search time, which belongs in the benchmark rather than the test suite.
+  OfficeOptions o;
+  o.rows = 1;
+  o.columns = 2;
+  o.furniture = false;
+  expectConservative(generateOffice(o), 20000, 4000, 2);
+}
+
+TEST(PropagationRays, SmallOfficeCoarseCells) {
+  OfficeOptions o;
+  o.rows = 1;
+  o.columns = 2;
+  BspOptions bsp;
+  bsp.minCoverage = 0.3;
+  expectConservative(generateOffice(o), 20000, 4000, 3, bsp);
+}
+
+TEST(PropagationRays, Maze) {
+  MazeOptions m;
+  m.width = 4;
+  m.height = 4;
+  m.seed = 5;
+  expectConservative(generateMaze(m), 20000, 4000, 4);
+}
+
+TEST(Propagation, SameOutputOnOneAndTwoThreads) {
+  MazeOptions m;
+  m.width = 3;
+  m.height = 3;
+  const Scene scene = generateMaze(m);
+  const Subdivision sub = buildSubdivision(scene);
+  PropagationOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const VisibilityGraph a = computeVisibility(scene, sub, one);
+  const VisibilityGraph b = computeVisibility(scene, sub, two);
+  ASSERT_EQ(a.interactions.size(), b.interactions.size());
+  for (size_t i = 0; i < a.interactions.size(); ++i) {
+    EXPECT_EQ(a.interactions[i].s, b.interactions[i].s);
+    EXPECT_EQ(a.interactions[i].r, b.interactions[i].r);
+    EXPECT_EQ(a.interactions[i].blockers, b.interactions[i].blockers);
+  }
+}
+
+}  // namespace
+}  // namespace gv
