@@ -15,6 +15,7 @@ Action addGenCommand(CLI::App& app);
 Action addCellsCommand(CLI::App& app);
 Action addRadiosityCommand(CLI::App& app);
 Action addVisCommand(CLI::App& app);
+Action addVerifyCommand(CLI::App& app);
 Action addPvsCommand(CLI::App& app);
 
 }  // namespace gv::cli

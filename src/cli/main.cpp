@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add(gv::cli::addCellsCommand);
   add(gv::cli::addRadiosityCommand);
   add(gv::cli::addVisCommand);
+  add(gv::cli::addVerifyCommand);
   add(gv::cli::addPvsCommand);
   CLI::App* help = app.add_subcommand("help", "List the subcommands");
 

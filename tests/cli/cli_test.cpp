@@ -103,3 +103,31 @@ TEST(Cli, VisWritesTheContractFiles) {
 
 }  // namespace
 }  // namespace gv
+
+namespace gv {
+namespace {
+
+TEST(Cli, VerifyPassesOnVisOutputAndCatchesARemovedPair) {
+  const auto dir = test::scratchDir();
+  const std::string obj = (dir / "c.obj").string(), out = (dir / "out").string();
+  ASSERT_EQ(test::runCli("gen cornell -o '" + obj + "'").exitCode, 0);
+  ASSERT_EQ(test::runCli("vis '" + obj + "' -o '" + out + "'").exitCode, 0);
+  auto r = test::runCli("verify '" + out + "' --rays 20000 --segments 5000");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("OK: no violation"), std::string::npos) << r.output;
+
+  // Drop every pair of patch 0 (the floor, which sees most of the box): a light leak to catch.
+  const auto txt = std::filesystem::path(out) / "visibility.txt";
+  std::ifstream in(txt);
+  std::string kept;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("0 ", 0) != 0) kept += line + "\n";
+  in.close();
+  test::writeFile(txt, kept);
+  r = test::runCli("verify '" + out + "' --rays 20000 --segments 5000");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("not listed"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace gv

@@ -1,0 +1,134 @@
+// Ray-casting verification of a visibility graph (see verify.h).
+#include "visibility/verify.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "raycast/embree_scene.h"
+
+namespace gv {
+namespace {
+
+/// Uniform double in [0, 1) from one raw draw: the same on every standard library.
+double unit(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+struct PatchSampler {
+  std::vector<double> cumulative;  // area prefix sums
+  explicit PatchSampler(const Scene& s) {
+    double sum = 0;
+    for (const Patch& p : s.patches) cumulative.push_back(sum += p.polygon.area());
+  }
+  uint32_t pick(std::mt19937_64& rng) const {
+    const double x = unit(rng) * cumulative.back();
+    return uint32_t(std::upper_bound(cumulative.begin(), cumulative.end(), x) - cumulative.begin());
+  }
+};
+
+Vec3 pointOn(const ConvexPolygon& poly, std::mt19937_64& rng) {
+  const auto& v = poly.vertices;
+  double total = 0;
+  for (size_t k = 1; k + 1 < v.size(); ++k) total += length(cross(v[k] - v[0], v[k + 1] - v[0]));
+  double pick = unit(rng) * total;
+  size_t k = 1;
+  for (; k + 2 < v.size(); ++k) {
+    const double a = length(cross(v[k] - v[0], v[k + 1] - v[0]));
+    if (pick < a) break;
+    pick -= a;
+  }
+  double a = unit(rng), b = unit(rng);
+  if (a + b > 1) a = 1 - a, b = 1 - b;
+  return v[0] + (v[k] - v[0]) * a + (v[k + 1] - v[0]) * b;
+}
+
+Vec3 cosineDirection(const Vec3& n, std::mt19937_64& rng) {
+  const double r = std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
+  const Vec3 t = normalize(std::abs(n.x) < 0.9 ? cross(n, {1, 0, 0}) : cross(n, {0, 1, 0}));
+  const Vec3 b = cross(n, t);
+  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r * r));
+}
+
+}  // namespace
+
+VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
+                              const VerifyOptions& options) {
+  VerifyReport report;
+  const size_t n = scene.patches.size();
+  std::unordered_map<uint64_t, const Interaction*> listed;
+  for (const Interaction& in : graph.interactions) {
+    if (in.r >= n) {
+      ++report.invalidPairs;
+      continue;
+    }
+    listed[(uint64_t(in.s) << 32) | in.r] = &in;
+  }
+  if (n == 0) return report;
+  const EmbreeScene rays(scene);
+  const PatchSampler sampler(scene);
+  std::mt19937_64 rng(options.seed);
+  const double eps = 1e-9 * scene.bounds().diagonal();
+  // Embree intersects in single precision: hits closer than this to a ray's origin are contact.
+  const double offset = kVerifyContactDistance * scene.bounds().diagonal();
+
+  for (uint64_t i = 0; i < options.rays; ++i) {
+    const uint32_t s = sampler.pick(rng);
+    const ConvexPolygon& sp = scene.patches[s].polygon;
+    const Vec3 o = pointOn(sp, rng);
+    const Vec3 d = cosineDirection(sp.normal(), rng);
+    ++report.rays;
+    // Start just in front of S: a patch overlapping S in its own plane (a box resting on a floor)
+    // meets the ray at distance 0, which is contact, not sight.
+    const auto hit = rays.firstHit(o + sp.normal() * offset, d, INFINITY, s);
+    if (!hit || dot(d, scene.patches[hit->patch].polygon.normal()) >= 0) continue;
+    ++report.raysHittingFront;
+    const uint32_t a = std::min(s, hit->patch), b = std::max(s, hit->patch);
+    if (!listed.count((uint64_t(a) << 32) | b)) {
+      if (report.examples.size() < kVerifyExamples)
+        report.examples.push_back(fmt::format("pair ({}, {}) not listed: ray from ({}, {}, {}) along "
+                                              "({}, {}, {}) meets {} first", a, b, o.x, o.y, o.z,
+                                              d.x, d.y, d.z, hit->patch));
+      ++report.missingPairs;
+    }
+  }
+
+  if (graph.interactions.empty()) return report;
+  for (uint64_t i = 0; i < options.segments; ++i) {
+    const Interaction& in = graph.interactions[rng() % graph.interactions.size()];
+    if (in.r >= n) continue;
+    const ConvexPolygon& sp = scene.patches[in.s].polygon;
+    const ConvexPolygon& rp = scene.patches[in.r].polygon;
+    const Vec3 p = pointOn(sp, rng), q = pointOn(rp, rng);
+    if (sp.plane.distance(q) <= eps || rp.plane.distance(p) <= eps) continue;  // not front to front
+    ++report.segments;
+    const Vec3 p1 = p + sp.normal() * offset, q1 = q + rp.normal() * offset;
+    if (!rays.occluded(p1, q1, in.s, in.r)) continue;
+    ++report.blockedSegments;
+    if (in.blockers.empty()) {
+      if (report.examples.size() < kVerifyExamples)
+        report.examples.push_back(fmt::format("VISIBLE pair ({}, {}) has a blocked segment ({}, {}, "
+                                              "{}) to ({}, {}, {})", in.s, in.r, p.x, p.y, p.z,
+                                              q.x, q.y, q.z));
+      ++report.blockedVisible;
+      continue;
+    }
+    for (const auto& [from, to, self] : {std::tuple{p1, q1, in.s}, std::tuple{q1, p1, in.r}}) {
+      const auto hit = rays.firstHit(from, to - from, 1.0, self);
+      if (hit && hit->patch != in.s && hit->patch != in.r &&
+          !std::binary_search(in.blockers.begin(), in.blockers.end(), hit->patch)) {
+        if (report.examples.size() < kVerifyExamples)
+          report.examples.push_back(fmt::format("patch {} is met first on segment ({}, {}, {}) to "
+                                                "({}, {}, {}) of pair ({}, {}) but is not a blocker",
+                                                hit->patch, from.x, from.y, from.z, to.x, to.y, to.z,
+                                                in.s, in.r));
+        ++report.missingBlockers;
+      }
+    }
+  }
+  return report;
+}
+
+}  // namespace gv

@@ -1,0 +1,47 @@
+// Independent verification of a visibility result by ray casting (Embree), per the contract of
+// ../shared/DESIGN.md: shares nothing with propagation but the scene.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "visibility/visibility_graph.h"
+
+namespace gv {
+
+/// Rays and segments start this fraction of the scene's diagonal away from their patches: Embree
+/// works in single precision (~1e-7 relative), and a patch overlapping the start point in its own
+/// plane (a box resting on a floor) would otherwise be "met" at distance 0 — contact, not sight.
+inline constexpr double kVerifyContactDistance = 1e-6;
+
+/// Violations described in VerifyReport::examples (the rest are only counted).
+inline constexpr size_t kVerifyExamples = 10;
+
+struct VerifyOptions {
+  uint64_t rays = 200000;     ///< random rays from random patch points, cosine-distributed
+  uint64_t segments = 50000;  ///< random segments between listed pairs
+  uint32_t seed = 1;
+};
+
+struct VerifyReport {
+  uint64_t rays = 0, raysHittingFront = 0;
+  uint64_t missingPairs = 0;          ///< a ray from S met R's front first, (S, R) not listed
+  uint64_t segments = 0, blockedSegments = 0;
+  uint64_t blockedVisible = 0;        ///< a segment of a VISIBLE pair is blocked
+  uint64_t missingBlockers = 0;       ///< the first patch met from S or R is not in the list
+  uint64_t invalidPairs = 0;          ///< listed pairs with ids out of range
+  std::vector<std::string> examples;  ///< the first few violations, described
+  bool ok() const { return missingPairs + blockedVisible + missingBlockers + invalidPairs == 0; }
+};
+
+/// Checks `graph` on `scene` (patch ids = indices of scene.patches):
+/// - rays from area-weighted random points of random patches, cosine-distributed about the
+///   normal: when the first patch met is met on its front, the pair must be listed;
+/// - segments between random points of listed pairs (front to front): blocked segments of VISIBLE
+///   pairs are errors, and the first patch met from either end must be in the blocker list.
+VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
+                              const VerifyOptions& options = {});
+
+}  // namespace gv
