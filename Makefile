@@ -7,7 +7,7 @@ PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libtinyobjloader-dev li
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD := build
 BUILD_ASAN := build-asan
-SCENE_DIR := $(BUILD)/out
+SCENE_DIR := out
 
 FUZZ_SECONDS ?= 60
 
