@@ -9,6 +9,7 @@
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
+#include "cli/output_files.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 
@@ -36,16 +37,10 @@ Action addCellsCommand(CLI::App& app) {
   return [s] {
     const Scene scene = loadScene(s->scene);
     const Subdivision sub = buildSubdivision(scene, s->options);
-    const std::filesystem::path dir(s->output);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw InputError(s->output, 0, "cannot create directory: " + ec.message());
+    const std::filesystem::path dir = makeOutputDirectory(s->output);
     writeCellsObj(sub, (dir / "cells.obj").string());
     writePortalsObj(sub, (dir / "portals.obj").string());
-    const std::string statsPath = (dir / "stats.json").string();
-    std::ofstream stats(statsPath);
-    stats << statsJson(sub.stats).dump(2) << "\n";
-    if (!stats) throw InputError(statsPath, 0, "cannot write");
+    writeJsonFile(statsJson(sub.stats), dir / "stats.json");
     const SubdivisionStats& st = sub.stats;
     fmt::print("patches {}  planes {}  leaf cells {}  portals {}\n", st.patches, st.planes,
                st.cells, st.portals);

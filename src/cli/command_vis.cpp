@@ -10,6 +10,8 @@
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
+#include "cli/output_files.h"
+#include "cli/output_files.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 #include "visibility/propagation.h"
@@ -48,19 +50,13 @@ Action addVisCommand(CLI::App& app) {
       };
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
 
-    const std::filesystem::path dir(s->output);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw InputError(s->output, 0, "cannot create directory: " + ec.message());
+    const std::filesystem::path dir = makeOutputDirectory(s->output);
     writeObj(scene, (dir / "patches.obj").string());
     writeVisibilityTxt(graph, (dir / "visibility.txt").string());
     const nlohmann::json stats = {{"scene", s->scene},
                                   {"subdivision", statsJson(sub.stats)},
                                   {"visibility", visibilityStatsJson(graph.stats)}};
-    const std::string statsPath = (dir / "stats.json").string();
-    std::ofstream out(statsPath);
-    out << stats.dump(2) << "\n";
-    if (!out) throw InputError(statsPath, 0, "cannot write");
+    writeJsonFile(stats, dir / "stats.json");
     if (s->json) {
       fmt::print("{}\n", stats.dump(2));
       return 0;
