@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/output_files.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
 #include "radiosity/ray_visibility.h"
@@ -52,10 +53,7 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", s->quiet, "No progress on stderr");
   return [s] {
     const Scene scene = loadScene(s->scene);
-    const std::filesystem::path dir(s->output);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) throw InputError(s->output, 0, "cannot create directory: " + ec.message());
+    const std::filesystem::path dir = makeOutputDirectory(s->output);
     if (!s->quiet)
       s->options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
 
@@ -66,10 +64,7 @@ Action addRadiosityCommand(CLI::App& app) {
     writeObj(scene, (dir / "patches.obj").string());
     writeRadiosityTxt(result, (dir / "radiosity.txt").string());
     writeElementsPly(result, (dir / "elements.ply").string());
-    const std::string statsPath = (dir / "stats.json").string();
-    std::ofstream stats(statsPath);
-    stats << radiosityStatsJson(result.stats, s->options, s->rays).dump(2) << "\n";
-    if (!stats) throw InputError(statsPath, 0, "cannot write");
+    writeJsonFile(radiosityStatsJson(result.stats, s->options, s->rays), dir / "stats.json");
 
     const RadiosityStats& st = result.stats;
     const size_t links = st.rounds.empty() ? 0 : st.rounds.back().links.total();
