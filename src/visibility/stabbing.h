@@ -107,10 +107,10 @@ class PortalSequenceStabber {
     Winding original;       // as pushed
     Winding clipped;        // after separating-plane clipping
     Winding source;         // the first portal as clipped by this level's plane (for later clips)
-    size_t constraintEnd;   // LP rows of levels [0, this]
-    LpVector optimum;       // an LP point with those rows (t = its worst row)
-    bool optimal;           // whether `optimum` is known to be the LP optimum
-    bool lpValid;           // false once the LP broke down (then everything is Unresolved)
+    size_t constraintEnd = 0;  // LP rows of levels [0, this]
+    LpVector optimum{};     // an LP point with those rows (t = its worst row)
+    bool optimal = false;   // whether `optimum` is known to be the LP optimum
+    bool lpValid = false;   // false once the LP broke down (then everything is Unresolved)
   };
 
   StabbingResult testLp(Level& level);
