@@ -6,7 +6,7 @@
 // sequence (a tighter start than the whole cell). In every reached cell each patch T is tested as
 // the sequence's last "portal", crossed the way a sightline would cross it; T is then "seen" from
 // S, and "seen from the front" when the sightline meets T's front. Pairs seen front to front
-// (from either end) interact. Their blockers are the patches seen from S or from T that meet
+// from both ends interact. Their blockers are the patches seen from S or from T that meet
 // conv(S, T): the first patch a segment from S meets lies in a cell the search reached through
 // the portals that segment crossed, and the segment crosses that patch after those portals, so
 // the search saw it (stabbing is never "no" when a line exists).
@@ -404,7 +404,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         const ConvexPolygon& sp = scene.patches[s].polygon;
         for (const auto& [t, f] : seen[s].seen) {
           if (t <= s) continue;
-          const bool front = (f & kSeenFront) || (flagsOf(t, s) & kSeenFront);
+          // Both searches are conservative and a sightline runs both ways, so a real pair is seen
+          // front to front from each end: requiring both is exact pruning, not a guess.
+          const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
           const ConvexPolygon& tp = scene.patches[t].polygon;
           if (!front || !canFace(sp, tp, tol.length())) continue;
           Interaction in{s, t, {}};

@@ -94,7 +94,12 @@ void PortalSequenceStabber::appendRows(std::span<const Vec3> loop) {
     // Scale by the edge's own Plücker size so that every row measures distance alike (t is then
     // "how far the line passes inside the edge", comparable across edges).
     const double edgeSize = std::sqrt(lengthSquared(de) + lengthSquared(me));
-    if (!(edgeSize > 0)) continue;  // repeated vertex: no edge
+    // A (near-)repeated vertex, e.g. two rounded copies of one clip point, is no edge: its
+    // direction is rounding noise, and once normalised below it would cut away real lines (a
+    // false "blocked", found by `globalvis verify` on the office). Dropping a constraint only
+    // enlarges the feasible set, so skipping such edges stays conservative. Lengths here are in
+    // units of the scene size.
+    if (!(length(de) > kRelativeLengthEpsilon)) continue;
     double norm = 0;
     for (int j = 0; j < kT; ++j) {
       r.a[j] /= edgeSize;

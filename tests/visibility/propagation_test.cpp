@@ -182,6 +182,15 @@ TEST(PropagationRays, SmallOfficeCoarseCells) {
   expectConservative(generateOffice(o), 20000, 4000, 3, bsp);
 }
 
+TEST(PropagationRays, DefaultOfficeCoarseCells) {
+  // Regression: on this scene a clipped portal with two rounded copies of one point made the
+  // stabbing LP answer "blocked" for a real sightline through a door (pair (15, 121), caught by
+  // `globalvis verify` with 200,000 rays once pairs had to be seen from both ends).
+  BspOptions bsp;
+  bsp.minCoverage = 0.3;
+  expectConservative(generateOffice(), 200000, 4000, 6, bsp);
+}
+
 TEST(PropagationRays, Maze) {
   MazeOptions m;
   m.width = 4;
