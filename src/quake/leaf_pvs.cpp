@@ -12,6 +12,7 @@
 #include <mutex>
 
 #include "geometry/tolerance.h"
+#include "visibility/cell_set.h"
 #include "visibility/portal_clipping.h"
 
 namespace gv {
@@ -22,36 +23,6 @@ using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-
-// A fixed-size set of cells, one bit each.
-class CellSet {
- public:
-  CellSet() = default;
-  explicit CellSet(size_t n) : words_((n + 63) / 64, 0) {}
-  void set(size_t i) { words_[i >> 6] |= uint64_t{1} << (i & 63); }
-  void reset(size_t i) { words_[i >> 6] &= ~(uint64_t{1} << (i & 63)); }
-  bool test(size_t i) const { return (words_[i >> 6] >> (i & 63)) & 1; }
-  void clear() { std::fill(words_.begin(), words_.end(), 0); }
-  size_t count() const {
-    size_t c = 0;
-    for (uint64_t w : words_) c += static_cast<size_t>(std::popcount(w));
-    return c;
-  }
-  /// *this = a & b; returns whether the result has a cell not in `seen`.
-  bool assignAnd(const CellSet& a, const CellSet& b, const CellSet& seen) {
-    uint64_t fresh = 0;
-    for (size_t k = 0; k < words_.size(); ++k) {
-      words_[k] = a.words_[k] & b.words_[k];
-      fresh |= words_[k] & ~seen.words_[k];
-    }
-    return fresh != 0;
-  }
-  std::vector<uint64_t>& words() { return words_; }
-  const std::vector<uint64_t>& words() const { return words_; }
-
- private:
-  std::vector<uint64_t> words_;
-};
 
 // A portal crossed in one direction: 2i is portal i from clusterA to clusterB (file winding), 2i+1
 // the way back (reversed winding), so that the winding is always counter-clockwise seen from the
@@ -116,7 +87,7 @@ bool mayFollow(const DirectedPortal& q, const DirectedPortal& r, double slack) {
 void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
   const DirectedPortal& q = g.portals[qi];
   out.clear();
-  out.set(q.to);
+  out.insert(q.to);
   stack.assign(1, q.to);
   const double slack = g.tol.length();
   while (!stack.empty()) {
@@ -124,9 +95,9 @@ void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
     stack.pop_back();
     for (int ri : g.outgoing[x]) {
       const DirectedPortal& r = g.portals[ri];
-      if (r.to == q.from || out.test(r.to)) continue;
+      if (r.to == q.from || out.contains(r.to)) continue;
       if (!mayFollow(q, r, slack)) continue;
-      out.set(r.to);
+      out.insert(r.to);
       stack.push_back(r.to);
     }
   }
@@ -151,7 +122,7 @@ struct Searcher {
   uint64_t sequences = 0;
 
   CellSet& frame(size_t depth) {
-    while (frames.size() <= depth) frames.emplace_back(visible.words().size() * 64);
+    while (frames.size() <= depth) frames.emplace_back(visible.capacity());
     return frames[depth];
   }
 
@@ -159,12 +130,12 @@ struct Searcher {
   void searchFrom(int pi) {
     const DirectedPortal& p = g.portals[pi];
     visible.clear();
-    visible.set(p.to);
+    visible.insert(p.to);
     stabber.clear();
     stabber.push(p.winding);  // one portal is always stabbed (never Blocked)
     ++sequences;
     onPath[p.from] = onPath[p.to] = 1;
-    frame(1).words() = might[pi]->words();
+    frame(1) = *might[pi];
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
   }
@@ -174,12 +145,12 @@ struct Searcher {
       const DirectedPortal& r = g.portals[ri];
       if (onPath[r.to]) continue;  // a line meets a convex cell in one segment
       frame(depth + 1);  // allocate first: references into `frames` are taken below
-      if (!frames[depth].test(r.to)) continue;
+      if (!frames[depth].contains(r.to)) continue;
       // Nothing this branch might reach is unseen: it cannot change the answer.
-      if (!frames[depth + 1].assignAnd(frames[depth], *might[ri], visible)) continue;
+      if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], *might[ri], visible)) continue;
       ++sequences;
       if (stabber.push(r.winding) == StabbingResult::Blocked) continue;
-      visible.set(r.to);
+      visible.insert(r.to);
       onPath[r.to] = 1;
       recurse(r.to, depth + 1);
       onPath[r.to] = 0;
@@ -217,9 +188,9 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
     CellSet u(cells);
     for (size_t c = 0; c < cells; ++c) {
       u.clear();
-      u.set(c);
+      u.insert(c);
       for (int pi : g.outgoing[c])
-        for (size_t k = 0; k < u.words().size(); ++k) u.words()[k] |= flood[pi].words()[k];
+        u.unite(flood[pi]);
       sum += static_cast<double>(u.count());
     }
     result.meanClustersMightSee = cells ? sum / static_cast<double>(cells) : 0;
@@ -250,7 +221,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       for (size_t k = begin; k < end; ++k) {
         const int pi = order[k];
         s.searchFrom(pi);
-        portalVis[pi].words() = s.visible.words();
+        portalVis[pi] = s.visible;
       }
     };
     if (options.parallel) {
@@ -269,10 +240,9 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   // A cell sees itself and what its portals see.
   std::vector<CellSet> seen(cells, CellSet(cells));
   for (size_t c = 0; c < cells; ++c) {
-    seen[c].set(c);
+    seen[c].insert(c);
     for (int pi : g.outgoing[c])
-      for (size_t k = 0; k < seen[c].words().size(); ++k)
-        seen[c].words()[k] |= portalVis[pi].words()[k];
+      seen[c].unite(portalVis[pi]);
   }
   result.searchSeconds = secondsSince(t1);
 
@@ -280,8 +250,8 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   std::vector<std::vector<int>> visibleCells(cells);
   for (size_t a = 0; a < cells; ++a) {
     for (size_t b = 0; b < cells; ++b) {
-      if (!seen[a].test(b)) continue;
-      if (seen[b].test(a)) {
+      if (!seen[a].contains(b)) continue;
+      if (seen[b].contains(a)) {
         visibleCells[a].push_back(static_cast<int>(b));
       } else {
         ++result.oneSidedPairsDropped;

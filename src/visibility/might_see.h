@@ -8,38 +8,9 @@
 #include <vector>
 
 #include "bsp/subdivision.h"
+#include "visibility/cell_set.h"
 
 namespace gv {
-
-/// A fixed-size set of cells.
-class CellSet {
- public:
-  CellSet() = default;
-  explicit CellSet(size_t n, bool full = false)
-      : words_((n + 63) / 64, full ? ~uint64_t{0} : 0), size_(n) {
-    if (full && n % 64) words_.back() = (uint64_t{1} << (n % 64)) - 1;
-  }
-  void insert(size_t i) { words_[i >> 6] |= uint64_t{1} << (i & 63); }
-  void erase(size_t i) { words_[i >> 6] &= ~(uint64_t{1} << (i & 63)); }
-  bool contains(size_t i) const { return (words_[i >> 6] >> (i & 63)) & 1; }
-  /// this := a ∩ b
-  void assignIntersection(const CellSet& a, const CellSet& b) {
-    words_.resize(a.words_.size());
-    size_ = a.size_;
-    for (size_t w = 0; w < words_.size(); ++w) words_[w] = a.words_[w] & b.words_[w];
-  }
-  /// Whether this and `other` share an element.
-  bool intersects(const CellSet& other) const {
-    for (size_t w = 0; w < words_.size(); ++w)
-      if (words_[w] & other.words_[w]) return true;
-    return false;
-  }
-  size_t size() const { return size_; }
-
- private:
-  std::vector<uint64_t> words_;
-  size_t size_ = 0;
-};
 
 /// For portal p crossed into p.front (`intoFront`) or into p.back: the cells a line crossing it
 /// that way may reach next. A cell is included when a chain of portals leads to it on which every
