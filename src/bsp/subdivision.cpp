@@ -5,13 +5,10 @@
 #include <chrono>
 
 #include "bsp/portals.h"
+#include "util/timing.h"
 
 namespace gv {
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 void sortUnique(std::vector<uint32_t>& v) {
   std::sort(v.begin(), v.end());
@@ -29,11 +26,11 @@ std::vector<uint32_t> Subdivision::neighbours(uint32_t cell) const {
 
 Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
   Subdivision sub;
-  const auto bspStart = std::chrono::steady_clock::now();
+  const auto bspStart = Clock::now();
   sub.tree = buildBspTree(scene, options);
   sub.stats.bspSeconds = secondsSince(bspStart);
 
-  const auto portalStart = std::chrono::steady_clock::now();
+  const auto portalStart = Clock::now();
   sub.cells.resize(sub.tree.leaves.size());
   for (size_t i = 0; i < sub.cells.size(); ++i) {
     const BspLeaf& leaf = sub.tree.leaves[i];

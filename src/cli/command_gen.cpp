@@ -11,6 +11,7 @@
 #include "generators/office.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/timing.h"
 
 namespace gv::cli {
 namespace {
@@ -71,7 +72,7 @@ Action addGenCommand(CLI::App& app) {
   maze->add_option("--lights", s->maze.lights, "Light panels (0: one per 16 cells)")->check(CLI::Range(0, 1000000));
 
   return [s, cornell, office, maze]() {
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     Scene scene;
     std::string name;
     try {
@@ -94,8 +95,7 @@ Action addGenCommand(CLI::App& app) {
     } catch (const std::invalid_argument& e) {
       throw InputError("gen " + name, 0, e.what());
     }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
     writeObj(scene, s->output);
     fmt::print("{}: {} patches, {} emitters, generated in {:.3f} s, written to {}\n", name,
                scene.patches.size(), scene.emitterCount(), seconds, s->output);

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "util/timing.h"
 #include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
 #include "scene/input_error.h"
@@ -30,10 +31,8 @@ Action addPvsCommand(CLI::App& app) {
   cmd->add_flag("--no-lp", s->noLp,
                 "Decide by separating-plane clipping only (faster, looser; still conservative)");
   return [s] {
-    const auto t0 = std::chrono::steady_clock::now();
-    auto elapsed = [&] {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    };
+    const auto t0 = Clock::now();
+    auto elapsed = [&] { return secondsSince(t0); };
     const PrtFile prt = readPrtFile(s->input);
     LeafPvsOptions options;
     options.parallel = !s->serial;

@@ -1,6 +1,7 @@
 // Leaf PVS of a Quake portal file by depth-first search over portal sequences with the stabbing
 // test (paper §4, §4.1). See leaf_pvs.h for the method and its guarantees.
 #include "quake/leaf_pvs.h"
+#include "util/timing.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -18,11 +19,6 @@
 namespace gv {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // A portal crossed in one direction: 2i is portal i from clusterA to clusterB (file winding), 2i+1
 // the way back (reversed winding), so that the winding is always counter-clockwise seen from the

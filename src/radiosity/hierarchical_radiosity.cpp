@@ -1,6 +1,7 @@
 // Hierarchical radiosity: initial links, BF refinement, Jacobi gather with push-pull. HSA91 §4,
 // paper §6 and §7.4 (Table 1 statistics per refinement round).
 #include "radiosity/hierarchical_radiosity.h"
+#include "util/timing.h"
 
 #include <fmt/core.h>
 
@@ -14,12 +15,6 @@
 
 namespace gv {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double seconds(Clock::time_point since) {
-  return std::chrono::duration<double>(Clock::now() - since).count();
-}
 
 Rgb operator+(const Rgb& x, const Rgb& y) { return {x.r + y.r, x.g + y.g, x.b + y.b}; }
 Rgb operator*(const Rgb& x, const Rgb& y) { return {x.r * y.r, x.g * y.g, x.b * y.b}; }
@@ -88,7 +83,7 @@ class Solver {
       stats_.rays += r.rays;
       stats_.interactions += r.interactions;
     }
-    stats_.seconds = seconds(start);
+    stats_.seconds = secondsSince(start);
 
     RadiosityResult result{{}, radiosity_, std::move(tree_), std::move(links_), stats_};
     result.patchRadiosity.assign(radiosity_.begin(),
@@ -237,7 +232,7 @@ class Solver {
       }
     }
     round.sweeps = sweep;
-    round.solveSeconds = seconds(t0);
+    round.solveSeconds = secondsSince(t0);
     return converged;
   }
 
@@ -266,7 +261,7 @@ class Solver {
   }
 
   void finishRound(RefinementStats& round, Clock::time_point t0) {
-    round.refineSeconds = seconds(t0);
+    round.refineSeconds = secondsSince(t0);
     round.elements = tree_.size();
     round.leaves = tree_.leafCount();
     for (const Link& l : links_) {

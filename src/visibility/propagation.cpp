@@ -11,6 +11,7 @@
 // the portals that segment crossed, and the segment crosses that patch after those portals, so
 // the search saw it (stabbing is never "no" when a line exists).
 #include "visibility/propagation.h"
+#include "util/timing.h"
 
 #include <algorithm>
 #include <atomic>
@@ -25,10 +26,6 @@
 namespace gv {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
 
 /// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
 struct CellPatch {
@@ -413,15 +410,20 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
             const auto& a = seen[s].seen;
             const auto& b = seen[t].seen;
-            std::vector<uint32_t> candidates;
-            candidates.reserve(a.size() + b.size());
-            for (const auto& e : a) candidates.push_back(e.first);
-            for (const auto& e : b) candidates.push_back(e.first);
-            std::sort(candidates.begin(), candidates.end());
-            candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-            for (uint32_t c : candidates)
+            // Both lists are sorted by patch: merge them, each candidate once and in order.
+            for (size_t i = 0, j = 0; i < a.size() || j < b.size();) {
+              uint32_t c;
+              if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) {
+                c = a[i++].first;
+              } else if (i == a.size() || b[j].first < a[i].first) {
+                c = b[j++].first;
+              } else {
+                c = a[i].first;
+                ++i, ++j;
+              }
               if (c != s && c != t && meetsConvexHull(scene.patches[c].polygon, sp, tp, tol))
                 in.blockers.push_back(c);
+            }
           }
           perSource[s].push_back(std::move(in));
         }
