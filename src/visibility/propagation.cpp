@@ -213,6 +213,7 @@ class PatchSearch {
 struct CellSearchResult {
   uint64_t reached = 0, tests = 0, lengthSum = 0;
   SequenceHistogram histogram;
+  StabbingStats stabbing;
 };
 
 /// The cell-level search, pruned like PatchSearch: a branch stops when every cell it might still
@@ -228,7 +229,9 @@ class CellSearch {
     stabber_.clear();
     unreached_.erase(source);
     result_.reached = 1;
+    stabber_.resetStats();
     visit(source, 0, nullptr);
+    result_.stabbing = stabber_.stats();
     return result_;
   }
 
@@ -336,6 +339,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     st.cellStabbingTests += r.tests;
     lengthSum += r.lengthSum;
     st.cellHistogram += r.histogram;
+    st.cellStabbing += r.stabbing;
   }
   st.meanSequenceLength = st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
   st.cellSeconds = secondsSince(start);
@@ -379,6 +383,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   StabbingStats stabbing;
   for (const PatchSearchResult& r : seen) stabbing += r.stabbing;
   st.patchStabbingTests = stabbing.tests;
+  st.patchStabbing = stabbing;
   st.unresolvedStabbing = stabbing.unresolved + stabbing.lpNumericalFailures;
   st.patchSeconds = secondsSince(patchStart);
 

@@ -52,6 +52,8 @@ StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
   unresolved += o.unresolved;
   lpNumericalFailures += o.lpNumericalFailures;
   degeneratePortals += o.degeneratePortals;
+  lpSolves += o.lpSolves;
+  simplexFallbacks += o.simplexFallbacks;
   return *this;
 }
 
@@ -113,6 +115,43 @@ void PortalSequenceStabber::appendRows(std::span<const Vec3> loop) {
   }
 }
 
+namespace {
+
+LpVector lpBoxLo() {
+  LpVector lo{};
+  for (int j = 0; j < kT; ++j) lo[j] = -kStabbingMaxGrazingSlope;
+  // t's lower bound is below any achievable value (|side| <= |π| <= ~5 x the box), so the LP is
+  // always feasible and t* measures how far the best line misses.
+  lo[kT] = -8 * kStabbingMaxGrazingSlope;
+  return lo;
+}
+
+LpVector lpBoxHi() {
+  LpVector hi{};
+  for (int j = 0; j <= kT; ++j) hi[j] = kStabbingMaxGrazingSlope;
+  return hi;
+}
+
+double sizeOf(const LpVector& x) {
+  double size = 1;
+  for (int j = 0; j < kT; ++j) size = std::max(size, std::abs(x[j]));
+  return size;
+}
+
+// Exact: the line crosses the loop forward, side >= 0 with every edge and > 0 with at least one
+// (a line in the loop's plane has every side 0 and crosses nothing).
+bool crossesForward(const Segment& line, std::span<const Vec3> w) {
+  bool crosses = false;
+  for (size_t i = 0; i < w.size(); ++i) {
+    const int s = sideExact(line, Segment{w[i], w[(i + 1) % w.size()]});
+    if (s < 0) return false;
+    crosses = crosses || s > 0;
+  }
+  return crosses;
+}
+
+}  // namespace
+
 StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   ++stats_.tests;
   witness_.reset();
@@ -139,26 +178,23 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     rows_.clear();
     if (level.lpValid) appendRows(level.clipped);
     level.constraintEnd = rows_.size();
-    LpVector lo{}, hi{};
-    for (int j = 0; j < kT; ++j) lo[j] = -kStabbingMaxGrazingSlope, hi[j] = kStabbingMaxGrazingSlope;
-    lo[kT] = -8 * kStabbingMaxGrazingSlope, hi[kT] = kStabbingMaxGrazingSlope;
-    LpVector c{};
-    c[kT] = 1;
+    std::optional<Segment> w;
     if (level.lpValid) {
-      std::optional<LpVector> x = lp_.solve(kDim, rows_, c, lo, hi);
-      if (x) level.optimum = *x; else level.lpValid = false;
-      level.optimal = true;
+      // The line along the normal through the centre is an LP point (with t lowered to what the
+      // rows allow), and usually a witness: no LP solve is needed to start a sequence.
+      const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
+      level.optimum = LpVector{};
+      level.optimum[0] = normal_[j0] / normal_[pivot_];
+      level.optimum[1] = normal_[j1] / normal_[pivot_];
+      level.optimum[kT] = kStabbingMaxGrazingSlope;
+      level.optimal = false;
+      lowerLazily(level, 0);
     }
-    levels_.push_back(std::move(level));
-    if (levels_.back().lpValid && options_.seekWitness) {
-      if (std::optional<Segment> w = findWitness(levels_.back().optimum)) {
-        witness_ = w;
-        ++stats_.stabbed;
-        return StabbingResult::Stabbed;
-      }
+    if (!degenerate && options_.seekWitness) {
+      const Segment line{origin_, origin_ + normal_ * scale_};
+      if (crossesForward(line, level.original)) w = line;
     }
-    ++stats_.unresolved;
-    return StabbingResult::Unresolved;
+    return accept(std::move(level), w);
   }
 
   const Level& prev = levels_.back();
@@ -190,6 +226,21 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
         return StabbingResult::Blocked;
       }
     }
+    // And the separating planes of (new, previous) portal bound the first portal's useful part
+    // (the same lemma for the reversed line; `vis` calls this the back clip). A smaller first
+    // portal tightens every later clip, then the new portal is clipped once more by it.
+    if (levels_.size() >= 2) {
+      const size_t before = level.source.size();
+      if (!clipBySeparatingPlanes(level.clipped, prev.clipped, level.source, tol_)) {
+        ++stats_.blockedByClipping;
+        return StabbingResult::Blocked;
+      }
+      if (level.source != prev.source && level.source.size() + before > 0 &&
+          !clipBySeparatingPlanes(level.source, prev.clipped, level.clipped, tol_)) {
+        ++stats_.blockedByClipping;
+        return StabbingResult::Blocked;
+      }
+    }
   }
 
   const size_t rowsBefore = rows_.size();
@@ -201,60 +252,108 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   level.constraintEnd = rows_.size();
   level.optimum = prev.optimum;
   level.optimal = prev.optimal;
-  StabbingResult result = StabbingResult::Unresolved;
-  if (level.lpValid) {
-    result = testLp(level);
-    if (result == StabbingResult::Blocked) {
-      rows_.resize(rowsBefore);
-      ++stats_.blockedByLp;
-      return result;
+  level.basis = prev.basis;
+  if (options_.seekWitness) {
+    if (std::optional<Segment> w = cheapWitness(level)) {
+      // Proven stabbed without the LP; keep its point an LP point for later lazy steps.
+      if (level.lpValid) lowerLazily(level, rowsBefore);
+      return accept(std::move(level), w);
     }
   }
+  if (level.lpValid && testLp(level) == StabbingResult::Blocked) {
+    rows_.resize(rowsBefore);
+    ++stats_.blockedByLp;
+    return StabbingResult::Blocked;
+  }
   levels_.push_back(std::move(level));
-  const Level& top = levels_.back();
-  if (top.lpValid && options_.seekWitness) {
-    if (std::optional<Segment> w = findWitness(top.optimum)) {
-      witness_ = w;
-      ++stats_.stabbed;
-      return StabbingResult::Stabbed;
-    }
+  std::optional<Segment> w;
+  if (levels_.back().lpValid && options_.seekWitness) w = findWitness(levels_.back().optimum);
+  Level top = std::move(levels_.back());
+  levels_.pop_back();
+  return accept(std::move(top), w);
+}
+
+StabbingResult PortalSequenceStabber::accept(Level&& level, std::optional<Segment> witness) {
+  level.witness = witness;
+  levels_.push_back(std::move(level));
+  if (witness) {
+    witness_ = witness;
+    ++stats_.stabbed;
+    return StabbingResult::Stabbed;
   }
   ++stats_.unresolved;
   return StabbingResult::Unresolved;
 }
 
+// The previous witness if it crosses the new portal too, else the line of the direction from the
+// first portal's (clipped) centre to the new portal's (clipped) centre through the common part
+// of all projections. Both confirmed exactly.
+std::optional<Segment> PortalSequenceStabber::cheapWitness(const Level& level) {
+  const Level& prev = levels_.back();
+  if (prev.witness && crossesForward(*prev.witness, level.original)) return prev.witness;
+  const Vec3 d = centroidOf(level.clipped) - centroidOf(level.source);
+  if (!(lengthSquared(d) > 0)) return std::nullopt;
+  return alongDirection(d, &level);
+}
+
+std::optional<Segment> PortalSequenceStabber::alongDirection(const Vec3& d, const Level* extra) {
+  loops_.clear();
+  for (const Level& l : levels_) loops_.emplace_back(l.original);
+  if (extra) loops_.emplace_back(extra->original);
+  std::optional<Segment> line = lineAlongDirection(loops_, d, witnessScratch_);
+  if (!line) return std::nullopt;
+  for (const Level& l : levels_)
+    if (!crossesForward(*line, l.original)) return std::nullopt;
+  if (extra && !crossesForward(*line, extra->original)) return std::nullopt;
+  return line;
+}
+
+// Lazy step: the level's point (an LP point for the rows before `firstRow`) with t lowered to
+// what the rows from `firstRow` on allow is still an LP point; it stays known-optimal only if t
+// did not move.
+void PortalSequenceStabber::lowerLazily(Level& level, size_t firstRow) const {
+  LpVector& x = level.optimum;
+  double t = x[kT];
+  for (size_t i = firstRow; i < level.constraintEnd; ++i) {
+    double rest = rows_[i].b;
+    for (int j = 0; j < kT; ++j) rest -= rows_[i].a[j] * x[j];
+    t = std::min(t, rest / rows_[i].a[kT]);  // the t coefficient of every row is positive
+  }
+  level.optimal = level.optimal && t == x[kT];
+  x[kT] = std::max(t, lpBoxLo()[kT]);
+}
+
 StabbingResult PortalSequenceStabber::testLp(Level& level) {
-  LpVector lo{}, hi{}, c{};
-  for (int j = 0; j < kT; ++j) lo[j] = -kStabbingMaxGrazingSlope, hi[j] = kStabbingMaxGrazingSlope;
-  // t's lower bound is below any achievable value (|side| <= |π| <= ~5 x the box), so the LP is
-  // always feasible and t* measures how far the best line misses.
-  lo[kT] = -8 * kStabbingMaxGrazingSlope, hi[kT] = kStabbingMaxGrazingSlope;
+  const LpVector lo = lpBoxLo(), hi = lpBoxHi();
+  LpVector c{};
   c[kT] = 1;
   const size_t first = levels_.back().constraintEnd;
   const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
-  auto sizeOf = [](const LpVector& x) {
-    double size = 1;
-    for (int j = 0; j < kT; ++j) size = std::max(size, std::abs(x[j]));
-    return size;
-  };
-  // Lazy step: the previous point with t lowered to what the new rows allow is still an LP point.
-  // If that t is above the margin the answer is "not blocked" without solving anything (most
-  // pushes); only then is the point no longer known to be optimal.
+  // If the previous point with t lowered is above the margin the answer is "not blocked" without
+  // solving anything (most pushes).
   {
-    LpVector x = level.optimum;
-    double t = x[kT];
-    for (size_t i = first; i < rows.size(); ++i) {
-      double rest = rows[i].b;
-      for (int j = 0; j < kT; ++j) rest -= rows[i].a[j] * x[j];
-      t = std::min(t, rest / rows[i].a[kT]);  // the t coefficient of every row is positive
-    }
-    if (t >= -kStabbingLpMargin * sizeOf(x)) {
-      level.optimal = level.optimal && t == x[kT];
-      x[kT] = t;
-      level.optimum = x;
+    Level lazy = level;
+    lowerLazily(lazy, first);
+    if (lazy.optimum[kT] >= -kStabbingLpMargin * sizeOf(lazy.optimum)) {
+      level.optimum = lazy.optimum;
+      level.optimal = lazy.optimal;
       return StabbingResult::Unresolved;
     }
   }
+  ++stats_.lpSolves;
+  // The dual simplex, warm-started from the deepest basis on this path; its "blocked" is taken
+  // only on its re-checked Lagrangian bound, so solver rounding cannot cut a real sightline.
+  const SimplexResult simplex = maximizeDualSimplex(kDim, rows, c, lo, hi, level.basis);
+  if (simplex.status == SimplexResult::Status::Optimal) {
+    level.basis = simplex.basis;
+    level.optimum = simplex.x;
+    level.optimal = true;
+    return simplex.certifiedUpperBound < -kStabbingLpMargin * sizeOf(simplex.x)
+               ? StabbingResult::Blocked
+               : StabbingResult::Unresolved;
+  }
+  ++stats_.simplexFallbacks;
+  level.basis = SimplexBasis{};
   // Seidel's incremental step needs an optimal start; otherwise solve from scratch.
   std::optional<LpVector> x = level.optimal
                                   ? lp_.extend(kDim, rows, first, level.optimum, c, lo, hi)
@@ -271,10 +370,11 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
   return StabbingResult::Unresolved;
 }
 
-// The LP point x as Plücker coordinates (d, m) is a line only if d·m = 0. Remove m's component
-// along d: the nearest line with the same direction. Then, as a second candidate, the line
-// through the centres of the (clipped) first and last portals.
-std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) const {
+// Candidates from the LP point x, as Plücker coordinates (d, m): first the line of direction d
+// through the common part of the portals' projections; then, since x need not be a line
+// (d·m = 0), the nearest line with the same direction; then the line through the centres of the
+// (clipped) first and last portals.
+std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) {
   const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
   Vec3 d{};
   d[j0] = x[0];
@@ -283,6 +383,7 @@ std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) con
   Vec3 m{x[2], x[3], x[4]};
   const double dd = lengthSquared(d);
   if (dd > 0) {
+    if (std::optional<Segment> line = alongDirection(d, nullptr)) return line;
     m -= d * (dot(d, m) / dd);
     const Vec3 p = cross(d, m) / dd;  // the point of the line nearest the local origin
     const Vec3 u = d / std::sqrt(dd);
@@ -297,20 +398,11 @@ std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) con
   return std::nullopt;
 }
 
-// Exact: the line crosses every portal as pushed (not clipped) forward: side >= 0 with every
-// edge, > 0 with at least one (a line in the portal's plane has every side 0).
+// Exact: the line crosses every portal as pushed (not clipped) forward.
 bool PortalSequenceStabber::confirms(const Segment& line) const {
   if (line.a == line.b) return false;
-  for (const Level& level : levels_) {
-    const Winding& w = level.original;
-    bool crosses = false;
-    for (size_t i = 0; i < w.size(); ++i) {
-      const int s = sideExact(line, Segment{w[i], w[(i + 1) % w.size()]});
-      if (s < 0) return false;
-      crosses = crosses || s > 0;
-    }
-    if (!crosses) return false;
-  }
+  for (const Level& level : levels_)
+    if (!crossesForward(line, level.original)) return false;
   return true;
 }
 

@@ -27,6 +27,22 @@ void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path) {
   }
 }
 
+namespace {
+
+nlohmann::json stabbingJson(const StabbingStats& s) {
+  return {{"tests", s.tests},
+          {"blocked_by_clipping", s.blockedByClipping},
+          {"blocked_by_lp", s.blockedByLp},
+          {"stabbed", s.stabbed},
+          {"unresolved", s.unresolved},
+          {"lp_solves", s.lpSolves},
+          {"simplex_fallbacks", s.simplexFallbacks},
+          {"lp_numerical_failures", s.lpNumericalFailures},
+          {"degenerate_portals", s.degeneratePortals}};
+}
+
+}  // namespace
+
 nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
   const double pairs = double(s.patches) * double(s.patches > 0 ? s.patches - 1 : 0) / 2;
   const uint64_t listed = s.pairsVisible + s.pairsPartial;
@@ -45,6 +61,8 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"cell_stabbing_tests", s.cellStabbingTests},
       {"patch_stabbing_tests", s.patchStabbingTests},
       {"unresolved_stabbing_tests", s.unresolvedStabbing},
+      {"stabbing", {{"cell_level", stabbingJson(s.cellStabbing)},
+                    {"patch_level", stabbingJson(s.patchStabbing)}}},
       {"mean_sequence_length", s.meanSequenceLength},
       {"fig13_successes_by_length", s.cellHistogram.successes},
       {"fig13_failures_by_length", s.cellHistogram.failures},

@@ -38,6 +38,7 @@ struct VisibilityStats {
   uint64_t cellStabbingTests = 0;      ///< portal-sequence tests of the cell-to-cell search
   uint64_t patchStabbingTests = 0;     ///< tests of the patch searches (portals and targets)
   uint64_t unresolvedStabbing = 0;     ///< tests answered "maybe" (counted as visible)
+  StabbingStats cellStabbing, patchStabbing;  ///< how the tests were decided, per search level
   double meanSequenceLength = 0;       ///< over the cell-level tests, in portals
   SequenceHistogram cellHistogram;     ///< Fig. 13
   uint64_t pairsVisible = 0, pairsPartial = 0;
