@@ -11,14 +11,34 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 Kernel::Point_3 toCgal(const Vec3& p) { return {p.x, p.y, p.z}; }
 
+
+}  // namespace
+
+namespace {
+
+// Exactly coplanar quadruples that coordinate comparisons alone reveal: all four in one axis plane,
+// or two lines through them both parallel to one axis (parallel lines are coplanar). These are
+// the common degeneracies of architectural scenes (vertical door edges, axis-aligned walls) and
+// exactly the inputs on which the floating-point filter fails and the slow exact path would run.
+bool axisCoplanar(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  for (int k = 0; k < 3; ++k)
+    if (a[k] == b[k] && a[k] == c[k] && a[k] == d[k]) return true;
+  auto alongAxis = [](const Vec3& p, const Vec3& q, int k) {
+    const int u = (k + 1) % 3, v = (k + 2) % 3;
+    return p[u] == q[u] && p[v] == q[v];
+  };
+  for (int k = 0; k < 3; ++k) {
+    if ((alongAxis(a, b, k) && alongAxis(c, d, k)) || (alongAxis(a, c, k) && alongAxis(b, d, k)) ||
+        (alongAxis(a, d, k) && alongAxis(b, c, k)))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  // Four points sharing one coordinate lie in an axis plane: exactly coplanar. Common in
-  // architectural scenes, and the case where the filter fails and the exact (slow) path runs.
-  if ((a.x == b.x && a.x == c.x && a.x == d.x) || (a.y == b.y && a.y == c.y && a.y == d.y) ||
-      (a.z == b.z && a.z == c.z && a.z == d.z))
-    return 0;
+  if (axisCoplanar(a, b, c, d)) return 0;
   // CGAL::orientation(p, q, r, s) is POSITIVE when s is on the positive side of the plane pqr,
   // whose positive side is where (q - p) x (r - p) points: the sign of det[q-p, r-p, s-p].
   return static_cast<int>(CGAL::orientation(toCgal(a), toCgal(b), toCgal(c), toCgal(d)));

@@ -2,6 +2,7 @@
 #include "visibility/hull_overlap.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace gv {
 namespace {
@@ -21,14 +22,8 @@ Range rangeOf(const std::vector<Vec3>& points, const Vec3& n, const Vec3& o) {
   return r;
 }
 
-/// True when the plane (n, o) has the hull on one side and b on the other, up to eps·|n|.
-bool separates(const Vec3& n, const Vec3& o, const std::vector<Vec3>& hull,
-               const std::vector<Vec3>& b, double eps) {
-  const double len = length(n);
-  if (len == 0) return false;
-  const double e = eps * len;
-  const Range h = rangeOf(hull, n, o);
-  const Range q = rangeOf(b, n, o);
+/// With the hull's range h and the polygon's q on one plane: does it separate them, up to e?
+bool separated(const Range& h, const Range& q, double e) {
   return (h.hi <= e && q.lo >= -e) || (h.lo >= -e && q.hi <= e);
 }
 
@@ -37,35 +32,51 @@ bool boxesMeet(const Aabb& a, const Aabb& b, double eps) {
          b.lo.y <= a.hi.y + eps && a.lo.z <= b.hi.z + eps && b.lo.z <= a.hi.z + eps;
 }
 
-/// Side planes of the hull through an edge of `e` and a vertex of `v`.
-bool sidePlaneSeparates(const ConvexPolygon& e, const ConvexPolygon& v, const std::vector<Vec3>& hull,
-                        const std::vector<Vec3>& b, double eps) {
-  const auto& ev = e.vertices;
-  for (size_t i = 0; i < ev.size(); ++i) {
-    const Vec3& a = ev[i];
-    const Vec3 edge = ev[(i + 1) % ev.size()] - a;
-    for (const Vec3& p : v.vertices)
-      if (separates(cross(edge, p - a), a, hull, b, eps)) return true;
+}  // namespace
+
+PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Tolerance& tol)
+    : eps_(tol.length()) {
+  box_ = s.bounds();
+  box_.add(r.bounds());
+  hull_ = s.vertices;
+  hull_.insert(hull_.end(), r.vertices.begin(), r.vertices.end());
+  auto consider = [&](const Vec3& n, const Vec3& o) {
+    const double len = length(n);
+    if (len == 0) return;
+    const double e = eps_ * len;
+    const Range h = rangeOf(hull_, n, o);
+    if (h.hi <= e || h.lo >= -e) planes_.push_back({n, o, h.lo, h.hi, e});
+  };
+  consider(s.plane.normal, s.vertices[0]);
+  consider(r.plane.normal, r.vertices[0]);
+  // Side planes through an edge of one polygon and a vertex of the other.
+  for (const auto& [e, v] : {std::pair{&s, &r}, std::pair{&r, &s}}) {
+    const auto& ev = e->vertices;
+    for (size_t i = 0; i < ev.size(); ++i) {
+      const Vec3& a = ev[i];
+      const Vec3 edge = ev[(i + 1) % ev.size()] - a;
+      for (const Vec3& p : v->vertices) consider(cross(edge, p - a), a);
+    }
   }
-  return false;
 }
 
-}  // namespace
+bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
+  if (!boxesMeet(box_, bBox, eps_)) return false;
+  const std::vector<Vec3>& bv = b.vertices;
+  {
+    const Vec3& n = b.plane.normal;
+    const double len = length(n);
+    if (len > 0 && separated(rangeOf(hull_, n, bv[0]), rangeOf(bv, n, bv[0]), eps_ * len))
+      return false;
+  }
+  for (const SidePlane& p : planes_)
+    if (separated({p.lo, p.hi}, rangeOf(bv, p.n, p.o), p.eps)) return false;
+  return true;
+}
 
 bool meetsConvexHull(const ConvexPolygon& b, const ConvexPolygon& s, const ConvexPolygon& r,
                      const Tolerance& tol) {
-  const double eps = tol.length();
-  Aabb hullBox = s.bounds();
-  hullBox.add(r.bounds());
-  if (!boxesMeet(hullBox, b.bounds(), eps)) return false;
-
-  std::vector<Vec3> hull = s.vertices;
-  hull.insert(hull.end(), r.vertices.begin(), r.vertices.end());
-  const std::vector<Vec3>& bv = b.vertices;
-  for (const ConvexPolygon* p : {&b, &s, &r})
-    if (separates(p->plane.normal, p->vertices[0], hull, bv, eps)) return false;
-  if (sidePlaneSeparates(s, r, hull, bv, eps) || sidePlaneSeparates(r, s, hull, bv, eps)) return false;
-  return true;
+  return PairHull(s, r, tol).meets(b);
 }
 
 }  // namespace gv

@@ -74,11 +74,10 @@ int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_
   return sigma;
 }
 
-// Clips `target` by the separators with an edge of `edges` and a vertex of `verts`. The kept side
-// is the pass's: `keepVertsSide` says whether that is the side of `verts`.
-bool clipWithSeparators(std::span<const Vec3> edges, std::span<const Vec3> verts,
-                        bool keepVertsSide, Winding& target, Winding& scratch,
-                        const Tolerance& tol) {
+// Appends the separators with an edge of `edges` and a vertex of `verts`, oriented to keep the
+// pass's side: `keepVertsSide` says whether that is the side of `verts`.
+void appendSeparators(std::span<const Vec3> edges, std::span<const Vec3> verts, bool keepVertsSide,
+                      std::vector<ClipPlane>& out) {
   const size_t ne = edges.size(), nv = verts.size();
   for (size_t i = 0; i < ne; ++i) {
     const Vec3& a = edges[i];
@@ -94,12 +93,9 @@ bool clipWithSeparators(std::span<const Vec3> edges, std::span<const Vec3> verts
       // Keep the pass's side: the side of `verts` (-sigma) or of `edges` (+sigma).
       const double keep = keepVertsSide ? -sigma : sigma;
       const Vec3 u = plane.n * (keep / lenN);
-      clipToHalfspace(target, u, dot(u, a), tol.length(), scratch);
-      target.swap(scratch);
-      if (target.empty()) return false;
+      out.push_back({u, dot(u, a)});
     }
   }
-  return true;
 }
 
 }  // namespace
@@ -133,15 +129,33 @@ void clipToHalfspace(std::span<const Vec3> in, const Vec3& unitNormal, double of
   }
 }
 
+void separatingPlanes(std::span<const Vec3> source, std::span<const Vec3> pass,
+                      std::vector<ClipPlane>& out) {
+  out.clear();
+  if (source.size() < 3 || pass.size() < 3) return;
+  // Edge of the source, vertex of the pass: keep the pass's (vertex) side.
+  appendSeparators(source, pass, true, out);
+  // Edge of the pass, vertex of the source: keep the pass's (edge) side.
+  appendSeparators(pass, source, false, out);
+}
+
+bool clipByPlanes(std::span<const ClipPlane> planes, Winding& target, Winding& scratch,
+                  const Tolerance& tol) {
+  for (const ClipPlane& p : planes) {
+    if (target.empty()) return false;
+    clipToHalfspace(target, p.unitNormal, p.offset, tol.length(), scratch);
+    target.swap(scratch);
+  }
+  return !target.empty();
+}
+
 bool clipBySeparatingPlanes(std::span<const Vec3> source, std::span<const Vec3> pass,
                             Winding& target, const Tolerance& tol) {
-  if (source.size() < 3 || pass.size() < 3) return !target.empty();
+  std::vector<ClipPlane> planes;
+  separatingPlanes(source, pass, planes);
   Winding scratch;
   scratch.reserve(target.size() + 8);
-  // Edge of the source, vertex of the pass: keep the pass's (vertex) side.
-  if (!clipWithSeparators(source, pass, true, target, scratch, tol)) return false;
-  // Edge of the pass, vertex of the source: keep the pass's (edge) side.
-  return clipWithSeparators(pass, source, false, target, scratch, tol);
+  return clipByPlanes(planes, target, scratch, tol);
 }
 
 Vec3 newellNormal(std::span<const Vec3> loop) {

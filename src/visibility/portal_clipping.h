@@ -39,6 +39,21 @@ void clipToHalfspace(std::span<const Vec3> in, const Vec3& unitNormal, double of
 bool clipBySeparatingPlanes(std::span<const Vec3> source, std::span<const Vec3> pass,
                             Winding& target, const Tolerance& tol);
 
+/// A clipping halfspace: keeps dot(unitNormal, x) >= offset (less the clip slack).
+struct ClipPlane {
+  Vec3 unitNormal;
+  double offset = 0;
+};
+
+/// The separating planes clipBySeparatingPlanes(source, pass, ·) clips by, in its order: they
+/// depend on the pair only, so a search can find them once and clip every later portal by them.
+void separatingPlanes(std::span<const Vec3> source, std::span<const Vec3> pass,
+                      std::vector<ClipPlane>& out);
+
+/// Clips `target` by each plane in turn (`scratch` is working memory); false when nothing is left.
+bool clipByPlanes(std::span<const ClipPlane> planes, Winding& target, Winding& scratch,
+                  const Tolerance& tol);
+
 /// Counter-clockwise normal of a vertex loop (Newell's method), not normalised; zero for a
 /// degenerate loop. Points to the side sightlines cross toward.
 Vec3 newellNormal(std::span<const Vec3> loop);

@@ -398,6 +398,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     const auto& v = seen[s].sameCellVisible;
     return std::binary_search(v.begin(), v.end(), t);
   };
+  std::vector<Aabb> patchBoxes(n);
+  for (size_t p = 0; p < n; ++p) patchBoxes[p] = scene.patches[p].polygon.bounds();
   std::vector<std::vector<Interaction>> perSource(n);
   parallelFor(
       n, threads, [] { return 0; },
@@ -413,6 +415,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           if (!front || !canFace(sp, tp, tol.length())) continue;
           Interaction in{s, t, {}};
           if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
+            const PairHull hull(sp, tp, tol);
             const auto& a = seen[s].seen;
             const auto& b = seen[t].seen;
             // Both lists are sorted by patch: merge them, each candidate once and in order.
@@ -426,7 +429,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                 c = a[i].first;
                 ++i, ++j;
               }
-              if (c != s && c != t && meetsConvexHull(scene.patches[c].polygon, sp, tp, tol))
+              if (c != s && c != t && hull.meets(scene.patches[c].polygon, patchBoxes[c]))
                 in.blockers.push_back(c);
             }
           }
@@ -454,10 +457,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     uint64_t k = 0, sum = 0;
     for (const Interaction& in : graph.interactions) {
       if (in.blockers.empty() || (k++ % stride) != 0) continue;
-      const ConvexPolygon& sp = scene.patches[in.s].polygon;
-      const ConvexPolygon& rp = scene.patches[in.r].polygon;
+      const PairHull hull(scene.patches[in.s].polygon, scene.patches[in.r].polygon, tol);
       for (uint32_t c = 0; c < n; ++c)
-        if (c != in.s && c != in.r && meetsConvexHull(scene.patches[c].polygon, sp, rp, tol)) ++sum;
+        if (c != in.s && c != in.r && hull.meets(scene.patches[c].polygon, patchBoxes[c])) ++sum;
       ++st.shaftSamples;
     }
     st.meanShaftCullPerPartial = double(sum) / double(st.shaftSamples);

@@ -197,7 +197,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     return accept(std::move(level), w);
   }
 
-  const Level& prev = levels_.back();
+  Level& prev = levels_.back();
   level.lpValid = level.lpValid && prev.lpValid;
   level.source = prev.source;
   if (options_.clipBySeparatingPlanes) {
@@ -209,8 +209,13 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
       level.clipped.swap(scratch_);
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
-    if (!level.clipped.empty() && levels_.size() >= 2)
-      clipBySeparatingPlanes(prev.source, prev.clipped, level.clipped, tol_);
+    if (!level.clipped.empty() && levels_.size() >= 2) {
+      if (!prev.separatorsKnown) {
+        separatingPlanes(prev.source, prev.clipped, prev.separators);
+        prev.separatorsKnown = true;
+      }
+      clipByPlanes(prev.separators, level.clipped, scratch_, tol_);
+    }
     if (level.clipped.empty()) {
       ++stats_.blockedByClipping;
       return StabbingResult::Blocked;
@@ -229,7 +234,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     // And the separating planes of (new, previous) portal bound the first portal's useful part
     // (the same lemma for the reversed line; `vis` calls this the back clip). A smaller first
     // portal tightens every later clip, then the new portal is clipped once more by it.
-    if (levels_.size() >= 2) {
+    if (options_.backClip && levels_.size() >= 2) {
       const size_t before = level.source.size();
       if (!clipBySeparatingPlanes(level.clipped, prev.clipped, level.source, tol_)) {
         ++stats_.blockedByClipping;

@@ -57,6 +57,10 @@ struct StabbingOptions {
   /// Look for an exact witness line when the LP is feasible (only changes Stabbed vs Unresolved;
   /// never the pruning). Costs one exact side test per portal edge.
   bool seekWitness = true;
+  /// Also clip the first portal by the separating planes of (new, previous) portal (`vis`'s back
+  /// clip). Prunes a few more sequences before the LP, at the price of finding those planes anew
+  /// on every push.
+  bool backClip = false;
 };
 
 /// An incremental stabbing-line test for a growing sequence of convex portals.
@@ -122,6 +126,9 @@ class PortalSequenceStabber {
     bool lpValid = false;   // false once the LP broke down (then everything is Unresolved)
     std::optional<Segment> witness;  // a confirmed stabbing line of levels [0, this], if known
     SimplexBasis basis;     // the last LP basis on this path: a warm start for deeper levels
+    // Separating planes of (source, clipped): they clip every portal pushed after this level.
+    std::vector<ClipPlane> separators;
+    bool separatorsKnown = false;
   };
 
   StabbingResult testLp(Level& level);
