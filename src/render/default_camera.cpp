@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 namespace gv {
 namespace {
@@ -17,6 +18,10 @@ constexpr double kCeilingCosine = 0.9;
 /// The cut sits this fraction of the scene's height below the highest ceiling, so that the
 /// ceiling and what hangs just under it (light panels) are removed, walls and furniture kept.
 constexpr double kCutBelowCeiling = 0.03;
+/// Direction scores closer than this fraction of the total patch area are ties.
+constexpr double kOpenSideFraction = 0.01;
+/// A first hit this close to the box's near face (fraction of its depth) is an outer wall.
+constexpr double kShellFraction = 0.02;
 /// Margin around the fitted box (fraction of the fitting distance).
 constexpr double kFitMargin = 1.05;
 
@@ -82,16 +87,51 @@ Camera flatSceneCamera(const Scene& scene, const Aabb& box, int upAxis, Camera c
   return c;
 }
 
+/// A closed building seen from outside shows its outer wall, lit by nothing. When the centre
+/// ray's first hit is the front of a patch on the box face nearest the camera (within
+/// kShellFraction of the box's depth), cut away everything up to the first patch behind it
+/// whose back faces the camera: the inner face of that wall. The cut is perpendicular to the
+/// view, so the picture is a section through the near rooms.
+void peelOuterShell(const Scene& scene, const Aabb& box, int depthAxis, Camera& c) {
+  const Tolerance tol = scene.tolerance();
+  const Vec3 o = c.eye, d = c.forward();
+  struct Hit {
+    double t;
+    bool front;
+  };
+  std::vector<Hit> hits;
+  for (const Patch& p : scene.patches) {
+    const Plane& plane = p.polygon.plane;
+    const double dn = dot(plane.normal, d);
+    if (dn == 0) continue;
+    const double t = -plane.distance(o) / dn;
+    if (t > 0 && p.polygon.contains(o + t * d, tol)) hits.push_back({t, dn < 0});
+  }
+  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.t < b.t; });
+  if (hits.empty() || !hits[0].front) return;
+  const double nearFace = d[depthAxis] > 0 ? box.lo[depthAxis] : box.hi[depthAxis];
+  const double extent = box.extent()[depthAxis];
+  if (std::abs((o + hits[0].t * d)[depthAxis] - nearFace) > kShellFraction * extent) return;
+  for (const Hit& h : hits) {
+    if (h.front) continue;
+    c.cutaway = Plane::through(o + (h.t + tol.length()) * d, -d);
+    return;
+  }
+}
+
 Camera boxSceneCamera(const Scene& scene, const Aabb& box, Camera c) {
   const int upAxis = 1;
   const std::array<Vec3, 4> directions{axis(2), -axis(2), axis(0), -axis(0)};
+  // A closed shell's area vector is zero, so every direction scores ~0 there: only a clear
+  // difference (kOpenSideFraction of the total area) beats the earlier direction.
   size_t best = 0;
   double bestScore = -INFINITY;
+  const double margin = kOpenSideFraction * scene.totalArea();
   for (size_t k = 0; k < directions.size(); ++k) {
     double score = 0;
     for (const Patch& p : scene.patches)
       score -= p.polygon.area() * dot(p.polygon.normal(), directions[k]);
-    if (score > bestScore * (1 + 1e-9) + 1e-300) bestScore = score, best = k;
+    if (k == 0 || score > bestScore + margin) bestScore = score, best = k;
   }
   const Vec3 d = directions[best];
   const int depthAxis = best < 2 ? 2 : 0, widthAxis = best < 2 ? 0 : 2;
@@ -104,6 +144,7 @@ Camera boxSceneCamera(const Scene& scene, const Aabb& box, Camera c) {
   c.target = box.center();
   c.eye = c.target - distance * d;
   c.up = axis(upAxis);
+  peelOuterShell(scene, box, depthAxis, c);
   return c;
 }
 

@@ -20,10 +20,12 @@ namespace gv {
 ///   camera sees most of: the largest (area facing the camera − area facing away), which
 ///   prefers the open side of an open box; ties go to +z (the Cornell box's published camera
 ///   looks along +z). It stands back far enough that the near face of the box fills the view.
+///   If what it sees in the middle is the outside of an outer wall (a closed building), a
+///   cutaway perpendicular to the view removes that wall: a section through the near rooms.
 Camera defaultCamera(const Scene& scene, int width = 800, int height = 600);
 
 /// A box is "flat" when its shortest extent is below this fraction of its middle extent.
-inline constexpr double kFlatRatio = 0.5;
+inline constexpr double kFlatRatio = 0.75;
 /// How steeply the default camera of a flat scene looks down (degrees above the horizontal).
 inline constexpr double kBuildingElevationDegrees = 55;
 /// Default vertical field of view (degrees); near the Cornell box's published 39.3°.

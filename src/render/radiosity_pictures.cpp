@@ -75,7 +75,11 @@ PictureStats writeRadiosityPictures(const Scene& scene, const RadiosityResult& r
   const ElementMesh mesh = buildElementMesh(result);
   const ElementBvh bvh(mesh, result.elements);
   const RenderBuffers buffers = renderRadiosity(result, mesh, bvh, camera, options.shading);
-  stats.white = options.white > 0 ? options.white : automaticWhite(buffers);
+  const auto notEmitter = [&](uint32_t face) {
+    const uint32_t patch = result.elements[mesh.faceElement[face]].patch;
+    return !scene.materials[scene.patches[patch].material].isEmitter();
+  };
+  stats.white = options.white > 0 ? options.white : automaticWhite(buffers, notEmitter);
   for (uint32_t f : buffers.face) stats.coveredPixels += f != kNoFace;
   const RgbImage picture = toneMap(buffers, stats.white);
   writePng(picture, (dir / "render.png").string());

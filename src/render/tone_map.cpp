@@ -7,13 +7,16 @@
 
 namespace gv {
 
-double automaticWhite(const RenderBuffers& buffers) {
+double automaticWhite(const RenderBuffers& buffers,
+                      const std::function<bool(uint32_t face)>& counts) {
   std::vector<double> values;
-  for (size_t i = 0; i < buffers.face.size(); ++i) {
-    if (buffers.face[i] == kNoFace) continue;
-    const Rgb& c = buffers.radiance[i];
-    values.push_back(std::max({c.r, c.g, c.b}));
-  }
+  for (int pass = 0; pass < 2 && values.empty(); ++pass)
+    for (size_t i = 0; i < buffers.face.size(); ++i) {
+      if (buffers.face[i] == kNoFace) continue;
+      if (pass == 0 && counts && !counts(buffers.face[i])) continue;
+      const Rgb& c = buffers.radiance[i];
+      values.push_back(std::max({c.r, c.g, c.b}));
+    }
   if (values.empty()) return 1;
   const auto k =
       static_cast<size_t>(std::floor(kWhitePercentile * static_cast<double>(values.size() - 1)));

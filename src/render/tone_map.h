@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 
 #include "render/png_image.h"
 #include "render/render.h"
@@ -27,8 +28,11 @@ inline constexpr double kWhitePercentile = 0.99;
 inline constexpr std::array<uint8_t, 3> kBackground{40, 44, 56};
 
 /// The default exposure: the kWhitePercentile percentile of max(R, G, B) over the pixels that
-/// see a surface; 1 when none does or that value is not positive.
-double automaticWhite(const RenderBuffers& buffers);
+/// see a face for which `counts(face)` is true (empty function: every face; the pictures pass
+/// "not an emitter"); over all pixels seeing a face when no pixel counts; 1 when no pixel sees
+/// one or the value is not positive.
+double automaticWhite(const RenderBuffers& buffers,
+                      const std::function<bool(uint32_t face)>& counts = {});
 
 /// sRGB encoding of a linear value in display units (clamped to [0, 1]), to 0..255.
 uint8_t encodeSrgb(double linear);

@@ -74,6 +74,36 @@ TEST(RenderCliTest, ExplicitCameraNoPicturesAndBadOptions) {
   EXPECT_EQ(test::runCli(base + (dir / "bad").string() + "' --image-size 640").exitCode, 1);
 }
 
+size_t litPixels(const RgbImage& image) {
+  size_t lit = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) lit += image.at(x, y)[0] + image.at(x, y)[1] > 2 * 100;
+  return lit;
+}
+
+TEST(RenderCliTest, DefaultOfficePictureShowsLitRoomsThroughTheCutaway) {
+  const auto dir = test::scratchDir();
+  ASSERT_EQ(test::runCli("gen office -o '" + (dir / "o.obj").string() + "'").exitCode, 0);
+  const std::string base = "radiosity '" + (dir / "o.obj").string() +
+                           "' -q --epsilon 1e-3 --max-refinements 2 --rays 4 --image-size 200x150";
+  const test::CliResult r = test::runCli(base + " -o '" + (dir / "out").string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const RgbImage image = readPng((dir / "out" / "render.png").string());
+  EXPECT_GT(distinctColours(image), 50u);
+  // The same viewpoint given by --camera has no cutaway: the picture is the unlit roof.
+  const Camera c = defaultCamera(generateOffice({}), 200, 150);
+  const std::string camera = std::to_string(c.eye.x) + "," + std::to_string(c.eye.y) + "," +
+                             std::to_string(c.eye.z) + "," + std::to_string(c.target.x) + "," +
+                             std::to_string(c.target.y) + "," + std::to_string(c.target.z);
+  const test::CliResult roof =
+      test::runCli(base + " --camera " + camera + " -o '" + (dir / "roof").string() + "'");
+  ASSERT_EQ(roof.exitCode, 0) << roof.output;
+  const size_t lit = litPixels(image);
+  const size_t litWithRoof = litPixels(readPng((dir / "roof" / "render.png").string()));
+  EXPECT_GT(lit, 200u * 150u / 10);
+  EXPECT_LT(litWithRoof, 200u * 150u / 100);
+}
+
 TEST(RenderDefaultCameraTest, CornellLooksIntoTheOpenFrontAndOfficeLiftsTheRoof) {
   const Scene cornell = generateCornellBox({});
   const Camera c = defaultCamera(cornell, 800, 600);

@@ -164,6 +164,25 @@ TEST(RenderTest, EmissiveQuadFillingTheViewGivesTheToneMappedValue) {
   EXPECT_EQ(encodeSrgb(0.001), 3);  // linear segment: round(255 * 12.92 * 0.001 = 3.29)
 }
 
+TEST(RenderTest, AutomaticExposureIgnoresTheFacesItIsToldTo) {
+  // Left half of the view: a "light" of radiosity 100; right half: a wall of 0.5. Counting only
+  // the wall, 0.5 maps to white and the light clamps; unfiltered, the light (half the pixels)
+  // is the 99th percentile.
+  const Quad light{{-10, -10, -1}, {0, -10, -1}, {0, 10, -1}, {-10, 10, -1}};
+  const Quad wall{{0, -10, -1}, {10, -10, -1}, {10, 10, -1}, {0, 10, -1}};
+  const Rendered r =
+      render({light, wall}, {{100, 100, 100}, {0.5, 0.5, 0.5}}, straightCamera(40, 30));
+  const auto lightFace = r.buffers.face[r.buffers.index(5, 15)];
+  ASSERT_NE(lightFace, r.buffers.face[r.buffers.index(35, 15)]);
+  EXPECT_DOUBLE_EQ(automaticWhite(r.buffers, [&](uint32_t f) { return f != lightFace; }), 0.5);
+  EXPECT_DOUBLE_EQ(automaticWhite(r.buffers), 100);
+  // Nothing counts: all faces do.
+  EXPECT_DOUBLE_EQ(automaticWhite(r.buffers, [](uint32_t) { return false; }), 100);
+  const RgbImage image = toneMap(r.buffers, 0.5);
+  EXPECT_EQ(image.at(5, 15)[0], 255);
+  EXPECT_EQ(image.at(35, 15)[0], 255);
+}
+
 TEST(RenderTest, BackFacesAreCulledSoAWallSeenFromBehindIsTransparent) {
   const Rendered away = render({kAwayWall}, {{1, 1, 1}}, straightCamera(20, 20));
   EXPECT_EQ(covered(away.buffers), 0u);
