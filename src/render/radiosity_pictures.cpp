@@ -1,6 +1,8 @@
 // render.png, mesh.png, links_visible.png, links_partial.png.
 #include "render/radiosity_pictures.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -82,20 +84,7 @@ PictureStats writeRadiosityPictures(const Scene& scene, const RadiosityResult& r
   stats.white = options.white > 0 ? options.white : automaticWhite(buffers, notEmitter);
   for (uint32_t f : buffers.face) stats.coveredPixels += f != kNoFace;
   const RgbImage picture = toneMap(buffers, stats.white);
-  writePng(picture, (dir / "render.png").string());
 
-  RgbImage meshPicture = picture;
-  const SegmentStyle edgeStyle{{0, 0, 0}, 0.6, true};
-  for (size_t f = 0; f < mesh.faces.size(); ++f) {
-    if (!facesCamera(result.elements[mesh.faceElement[f]], camera)) continue;
-    const std::vector<uint32_t>& face = mesh.faces[f];
-    for (size_t k = 0; k < face.size(); ++k)
-      drawSegment(meshPicture, camera, buffers.depth, mesh.positions[face[k]],
-                  mesh.positions[face[(k + 1) % face.size()]], edgeStyle);
-  }
-  writePng(meshPicture, (dir / "mesh.png").string());
-
-  const RgbImage under = dimmed(picture);
   // Every link of a class when there are at most kMaxDrawnLinks, else every k-th (in the
   // solver's order, which follows the refinement, so the sample spreads over the whole scene).
   std::vector<uint32_t> visibleLinks, partialLinks;
@@ -105,23 +94,42 @@ PictureStats writeRadiosityPictures(const Scene& scene, const RadiosityResult& r
   }
   stats.visibleLinks = visibleLinks.size();
   stats.partialLinks = partialLinks.size();
+  const RgbImage under = dimmed(picture);
   const auto drawLinks = [&](const std::vector<uint32_t>& links,
-                             const std::array<uint8_t, 3>& colour, size_t& drawn) {
+                             const std::array<uint8_t, 3>& colour, size_t& drawn,
+                             const char* name) {
     RgbImage image = under;
-    const size_t stride = (links.size() + kMaxDrawnLinks - 1) / kMaxDrawnLinks;
+    const size_t stride = std::max<size_t>(1, (links.size() + kMaxDrawnLinks - 1) / kMaxDrawnLinks);
     const SegmentStyle style{colour, kLinkOpacity, true};
-    for (size_t k = 0; k < links.size(); k += std::max<size_t>(1, stride)) {
+    for (size_t k = 0; k < links.size(); k += stride) {
       const Link& link = result.links[links[k]];
       drawSegment(image, camera, buffers.depth, result.elements[link.a].polygon.centroid(),
                   result.elements[link.b].polygon.centroid(), style);
       ++drawn;
     }
-    return image;
+    writePng(image, (dir / name).string());
   };
-  const RgbImage visible = drawLinks(visibleLinks, kVisibleLinkColour, stats.visibleLinksDrawn);
-  const RgbImage partial = drawLinks(partialLinks, kPartialLinkColour, stats.partialLinksDrawn);
-  writePng(visible, (dir / "links_visible.png").string());
-  writePng(partial, (dir / "links_partial.png").string());
+  const auto drawMesh = [&] {
+    RgbImage image = picture;
+    const SegmentStyle edgeStyle{{0, 0, 0}, 0.6, true};
+    for (size_t f = 0; f < mesh.faces.size(); ++f) {
+      if (!facesCamera(result.elements[mesh.faceElement[f]], camera)) continue;
+      const std::vector<uint32_t>& face = mesh.faces[f];
+      for (size_t k = 0; k < face.size(); ++k)
+        drawSegment(image, camera, buffers.depth, mesh.positions[face[k]],
+                    mesh.positions[face[(k + 1) % face.size()]], edgeStyle);
+    }
+    writePng(image, (dir / "mesh.png").string());
+  };
+  // The four pictures are independent (each its own image and file).
+  tbb::parallel_invoke(
+      [&] { writePng(picture, (dir / "render.png").string()); }, drawMesh,
+      [&] {
+        drawLinks(visibleLinks, kVisibleLinkColour, stats.visibleLinksDrawn, "links_visible.png");
+      },
+      [&] {
+        drawLinks(partialLinks, kPartialLinkColour, stats.partialLinksDrawn, "links_partial.png");
+      });
   stats.seconds = secondsSince(start);
   return stats;
 }
