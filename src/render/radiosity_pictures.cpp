@@ -111,7 +111,7 @@ PictureStats writeRadiosityPictures(const Scene& scene, const RadiosityResult& r
   };
   const auto drawMesh = [&] {
     RgbImage image = picture;
-    const SegmentStyle edgeStyle{{0, 0, 0}, 0.6, true};
+    const SegmentStyle edgeStyle{{0, 0, 0}, kEdgeOpacity, true};
     for (size_t f = 0; f < mesh.faces.size(); ++f) {
       if (!facesCamera(result.elements[mesh.faceElement[f]], camera)) continue;
       const std::vector<uint32_t>& face = mesh.faces[f];

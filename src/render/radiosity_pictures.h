@@ -47,6 +47,8 @@ inline constexpr std::array<uint8_t, 3> kVisibleLinkColour{255, 255, 255};
 inline constexpr std::array<uint8_t, 3> kPartialLinkColour{40, 255, 40};
 /// Opacity of one link line (overlapping lines add up towards solid colour).
 inline constexpr double kLinkOpacity = 0.6;
+/// Opacity of the black element edges of mesh.png (light enough that dense meshes stay readable).
+inline constexpr double kEdgeOpacity = 0.35;
 /// At most this many links of each class are drawn.
 inline constexpr size_t kMaxDrawnLinks = 4000;
 /// The scene under the links and edges is dimmed to this fraction (in 8-bit sRGB values).
@@ -54,7 +56,8 @@ inline constexpr double kUnderlayDim = 0.35;
 
 /// Writes into `dir`:
 ///  - render.png: the solution, tone-mapped (tone_map.h);
-///  - mesh.png: the same picture with the leaf elements' edges drawn in black (Fig. 14 left);
+///  - mesh.png: the same picture with the leaf elements' edges drawn in black (Fig. 14 left),
+///    edges of elements facing away from the camera left out;
 ///  - links_visible.png / links_partial.png: every VISIBLE (white) or PARTIAL (green) link of
 ///    the final solution as a segment between the centroids of its two elements, over the
 ///    dimmed picture. A refined solution has 10^4..10^6 links, which would paint every pixel, so
