@@ -13,6 +13,7 @@
 #include "radiosity/radiosity_io.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
+#include "render/radiosity_pictures.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 
@@ -27,6 +28,8 @@ Action addRadiosityCommand(CLI::App& app) {
     int rays = 16;
     bool quiet = false;
     RadiosityOptions options;
+    std::string camera, imageSize = "800x600";
+    bool noPictures = false, flat = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl: Kd reflectance, Ke emission)")
@@ -51,6 +54,15 @@ Action addRadiosityCommand(CLI::App& app) {
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--seed", s->options.seed, "Seed of the visibility samples");
   cmd->add_flag("-q,--quiet", s->quiet, "No progress on stderr");
+  cmd->add_option("--camera", s->camera,
+                  "Viewpoint of the pictures: ex,ey,ez,tx,ty,tz[,fov] (eye, target, vertical "
+                  "field of view in degrees; default: a view into the scene, roof cut away)")
+      ->check([](const std::string& v) { return pictureOptionsError(v, "800x600"); });
+  cmd->add_option("--image-size", s->imageSize, "Size of the pictures, WxH")
+      ->check([](const std::string& v) { return pictureOptionsError("", v); });
+  cmd->add_flag("--flat", s->flat, "Pictures with one colour per element instead of smooth");
+  cmd->add_flag("--no-pictures", s->noPictures,
+                "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s] {
     const Scene scene = loadScene(s->scene);
     const std::filesystem::path dir = makeOutputDirectory(s->output);
@@ -65,6 +77,11 @@ Action addRadiosityCommand(CLI::App& app) {
     writeRadiosityTxt(result, (dir / "radiosity.txt").string());
     writeElementsPly(result, (dir / "elements.ply").string());
     writeJsonFile(radiosityStatsJson(result.stats, s->options, s->rays), dir / "stats.json");
+    if (!s->noPictures) {
+      const PictureStats pictures = writeRadiosityPictures(
+          scene, result, dir, parsePictureOptions(s->camera, s->imageSize, s->flat));
+      if (!s->quiet) std::cerr << fmt::format("pictures: {:.2f} s\n", pictures.seconds);
+    }
 
     const RadiosityStats& st = result.stats;
     const size_t links = st.rounds.empty() ? 0 : st.rounds.back().links.total();

@@ -5,11 +5,9 @@
 #include <fmt/os.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
-#include <map>
-#include <tuple>
 
+#include "radiosity/element_mesh.h"
 #include "scene/input_error.h"
 
 namespace gv {
@@ -112,34 +110,7 @@ void writeElementsPly(const RadiosityResult& result, const std::string& path, do
     }
     if (!(white > 0)) white = 1;
   }
-  // Vertices shared within a patch: midpoints are computed identically from the same end points,
-  // so equal positions have equal bits.
-  using Key = std::tuple<uint32_t, uint64_t, uint64_t, uint64_t>;
-  std::map<Key, uint32_t> index;
-  struct Vertex {
-    Vec3 p;
-    Rgb sum;
-    double weight = 0;
-  };
-  std::vector<Vertex> vertices;
-  std::vector<std::vector<uint32_t>> faces;
-  for (uint32_t e = 0; e < tree.size(); ++e) {
-    const Element& el = tree[e];
-    if (!el.isLeaf()) continue;
-    std::vector<uint32_t> face;
-    const Rgb& b = result.elementRadiosity[e];
-    for (const Vec3& v : el.polygon.vertices) {
-      const Key key{el.patch, std::bit_cast<uint64_t>(v.x), std::bit_cast<uint64_t>(v.y),
-                    std::bit_cast<uint64_t>(v.z)};
-      auto [it, fresh] = index.try_emplace(key, static_cast<uint32_t>(vertices.size()));
-      if (fresh) vertices.push_back({v, {}, 0});
-      Vertex& vx = vertices[it->second];
-      vx.sum = {vx.sum.r + el.area * b.r, vx.sum.g + el.area * b.g, vx.sum.b + el.area * b.b};
-      vx.weight += el.area;
-      face.push_back(it->second);
-    }
-    faces.push_back(std::move(face));
-  }
+  const ElementMesh mesh = buildElementMesh(result);
   auto tone = [white](double x) {
     const double v = std::pow(std::clamp(x / white, 0.0, 1.0), 1.0 / kDisplayGamma);
     return static_cast<int>(std::lround(255.0 * v));
@@ -150,16 +121,17 @@ void writeElementsPly(const RadiosityResult& result, const std::string& path, do
     out.print("comment globalvis radiosity: leaf elements; colours = radiosity / {:.6g}, gamma "
               "1/{}\n", white, kDisplayGamma);
     out.print("element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
-              vertices.size());
+              mesh.positions.size());
     out.print("property uchar red\nproperty uchar green\nproperty uchar blue\n");
     out.print("property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n");
-    out.print("element face {}\nproperty list uchar int vertex_indices\nend_header\n", faces.size());
-    for (const Vertex& v : vertices) {
-      const Rgb c{v.sum.r / v.weight, v.sum.g / v.weight, v.sum.b / v.weight};
-      out.print("{:.9g} {:.9g} {:.9g} {} {} {} {:.6g} {:.6g} {:.6g}\n", v.p.x, v.p.y, v.p.z,
-                tone(c.r), tone(c.g), tone(c.b), c.r, c.g, c.b);
+    out.print("element face {}\nproperty list uchar int vertex_indices\nend_header\n", mesh.faces.size());
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+      const Vec3& p = mesh.positions[v];
+      const Rgb& c = mesh.vertexRadiosity[v];
+      out.print("{:.9g} {:.9g} {:.9g} {} {} {} {:.6g} {:.6g} {:.6g}\n", p.x, p.y, p.z, tone(c.r),
+                tone(c.g), tone(c.b), c.r, c.g, c.b);
     }
-    for (const std::vector<uint32_t>& f : faces) {
+    for (const std::vector<uint32_t>& f : mesh.faces) {
       out.print("{}", f.size());
       for (uint32_t i : f) out.print(" {}", i);
       out.print("\n");
