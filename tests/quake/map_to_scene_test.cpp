@@ -1,0 +1,279 @@
+// Tests of Quake .map → Scene: outward brush faces, hidden-surface removal between brushes
+// (checked against analytic areas), skipped brush kinds, light entities as emitters.
+#include "quake/map_to_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "quake/map_text.h"
+#include "scene/input_error.h"
+#include "scene/scene_io.h"
+#include "support/run_cli.h"
+#include "support/temp_dir.h"
+
+namespace gv {
+namespace {
+
+using test::boxBrush;
+using test::pointEntity;
+using test::world;
+
+Scene convert(const std::string& text, MapImportStats* stats = nullptr, const MapImportOptions& o = {}) {
+  return mapToScene(parseMapText("t.map", text), "t.map", o, stats);
+}
+
+void expectNear(const Vec3& a, const Vec3& b) {
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], 1e-9) << k;
+}
+
+double area(const Scene& s) { return s.totalArea(); }
+
+/// True when some patch's interior lies in plane `axis = at`.
+bool anyPatchOnPlane(const Scene& s, int axis, double at) {
+  for (const Patch& p : s.patches) {
+    bool on = true;
+    for (const Vec3& v : p.polygon.vertices) on = on && std::abs(v[axis] - at) < 1e-9;
+    if (on) return true;
+  }
+  return false;
+}
+
+TEST(MapToScene, OneCubeGivesSixOutwardPatches) {
+  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 64, 64})));
+  ASSERT_EQ(s.patches.size(), 6u);
+  EXPECT_NEAR(area(s), 6 * 64.0 * 64.0, 1e-6);
+  const Vec3 c{32, 32, 32};
+  for (const Patch& p : s.patches) EXPECT_GT(dot(p.polygon.normal(), p.polygon.centroid() - c), 0);
+  const Aabb b = s.bounds();
+  expectNear(b.lo, {0, 0, 0});
+  expectNear(b.hi, {64, 64, 64});
+}
+
+TEST(MapToScene, RealBrushFromQbspfeaturesFacesOut) {
+  // Brush 0 of ericw-tools' qbspfeatures.map (Valve 220), written by TrenchBroom: the box
+  // x in [-80, 64], y in [64, 80], z in [16, 96] whatever the order of its points.
+  const std::string brush =
+      "{\n"
+      "( -80 256 16 ) ( -80 257 16 ) ( -80 256 17 ) brown_brick [ 0 -1 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "( -64 64 16 ) ( -64 64 17 ) ( -63 64 16 ) brown_brick [ 1 0 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "( -64 256 16 ) ( -63 256 16 ) ( -64 257 16 ) brown_brick [ -1 0 0 0 ] [ 0 -1 0 0 ] 0 1 1\n"
+      "( 64 384 96 ) ( 64 385 96 ) ( 65 384 96 ) brown_brick [ 1 0 0 0 ] [ 0 -1 0 0 ] 0 1 1\n"
+      "( 64 80 48 ) ( 65 80 48 ) ( 64 80 49 ) brown_brick [ -1 0 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "( 64 384 48 ) ( 64 384 49 ) ( 64 385 48 ) brown_brick [ 0 1 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "}\n";
+  const Scene s = convert(world(brush));
+  ASSERT_EQ(s.patches.size(), 6u);
+  const Aabb b = s.bounds();
+  expectNear(b.lo, {-80, 64, 16});
+  expectNear(b.hi, {64, 80, 96});
+  const Vec3 c = b.center();
+  for (const Patch& p : s.patches) EXPECT_GT(dot(p.polygon.normal(), p.polygon.centroid() - c), 0);
+  EXPECT_NEAR(area(s), 2 * (144.0 * 16 + 144.0 * 80 + 16.0 * 80), 1e-6);
+}
+
+TEST(MapToScene, TouchingBrushesLoseTheSharedFace) {
+  MapImportStats st;
+  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({64, 0, 0}, {128, 64, 64})), &st);
+  EXPECT_EQ(s.patches.size(), 10u);
+  EXPECT_NEAR(area(s), 10 * 64.0 * 64.0, 1e-6);
+  EXPECT_FALSE(anyPatchOnPlane(s, 0, 64));
+  EXPECT_EQ(st.hiddenFaces, 2u);
+}
+
+TEST(MapToScene, PartlyTouchingBrushesKeepTheUncoveredPart) {
+  // A small box against the middle of a big one's +x face: the big face keeps a frame around it.
+  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 96, 96}) + boxBrush({64, 32, 32}, {96, 64, 64})));
+  double onPlane = 0;
+  for (const Patch& p : s.patches)
+    if (std::abs(p.polygon.centroid().x - 64) < 1e-9) {
+      onPlane += p.polygon.area();
+      EXPECT_GT(p.polygon.normal().x, 0);
+    }
+  EXPECT_NEAR(onPlane, 96.0 * 96 - 32.0 * 32, 1e-6);
+  EXPECT_NEAR(area(s), 2 * (64.0 * 96 * 2 + 96.0 * 96) + 4 * 32.0 * 32, 1e-6);
+}
+
+TEST(MapToScene, BrushInsideAnotherGivesNothing) {
+  MapImportStats st;
+  const Scene s = convert(world(boxBrush({0, 0, 0}, {128, 128, 128}) + boxBrush({32, 32, 32}, {64, 64, 64})), &st);
+  EXPECT_EQ(s.patches.size(), 6u);
+  EXPECT_NEAR(area(s), 6 * 128.0 * 128.0, 1e-6);
+  EXPECT_EQ(st.hiddenFaces, 6u);
+}
+
+TEST(MapToScene, OverlappingBrushesGiveTheUnionsSurface) {
+  // A = [0,64]^3, B = A + (32, 32, 0): the union's surface (tops and bottoms coincide in part:
+  // exactly one copy each) is 2 · (2·64² − 32²) + perimeter 6·64 × height 64.
+  for (bool reversed : {false, true}) {
+    const std::string a = boxBrush({0, 0, 0}, {64, 64, 64}), b = boxBrush({32, 32, 0}, {96, 96, 64});
+    const Scene s = convert(world(reversed ? b + a : a + b));
+    const double expected = 2 * (2 * 64.0 * 64 - 32.0 * 32) + 6 * 64.0 * 64;
+    EXPECT_NEAR(area(s), expected, 1e-6) << reversed;
+    // No point of a patch lies strictly inside either box (an independent check of the cut).
+    for (const Patch& p : s.patches) {
+      const Vec3 c = p.polygon.centroid();
+      for (const auto& [lo, hi] : {std::pair{Vec3{0, 0, 0}, Vec3{64, 64, 64}}, std::pair{Vec3{32, 32, 0}, Vec3{96, 96, 64}}}) {
+        const bool inside = c.x > lo.x + 1e-6 && c.x < hi.x - 1e-6 && c.y > lo.y + 1e-6 &&
+                            c.y < hi.y - 1e-6 && c.z > lo.z + 1e-6 && c.z < hi.z - 1e-6;
+        EXPECT_FALSE(inside);
+      }
+    }
+  }
+}
+
+TEST(MapToScene, NonSolidBrushesAreSkippedAndSkyIsBlack) {
+  MapImportStats st;
+  const std::string text =
+      world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({200, 0, 0}, {264, 64, 64}, "sky4") +
+            boxBrush({400, 0, 0}, {464, 64, 64}, "clip") + boxBrush({600, 0, 0}, {664, 64, 64}, "*water1") +
+            boxBrush({800, 0, 0}, {864, 64, 64}, "hint") + boxBrush({1000, 0, 0}, {1064, 64, 64}, "skip") +
+            boxBrush({1200, 0, 0}, {1264, 64, 64}, "origin") + boxBrush({1400, 0, 0}, {1464, 64, 64}, "trigger")) +
+      "{\n\"classname\" \"trigger_once\"\n" + boxBrush({0, 200, 0}, {64, 264, 64}) + "}\n" +
+      "{\n\"classname\" \"func_illusionary\"\n" + boxBrush({0, 400, 0}, {64, 464, 64}) + "}\n" +
+      "{\n\"classname\" \"func_detail\"\n" + boxBrush({0, 600, 0}, {64, 664, 64}) + "}\n";
+  const Scene s = convert(text, &st);
+  EXPECT_EQ(s.patches.size(), 18u);  // wall, sky and func_detail boxes
+  EXPECT_EQ(st.skyFaces, 6u);
+  EXPECT_EQ(st.skyBrushes, 1u);
+  EXPECT_EQ(st.clipBrushes, 1u);
+  EXPECT_EQ(st.liquidBrushes, 1u);
+  EXPECT_EQ(st.hintBrushes, 1u);
+  EXPECT_EQ(st.skipOnlyBrushes, 1u);
+  EXPECT_EQ(st.originBrushes, 1u);
+  EXPECT_EQ(st.triggerBrushes, 1u);
+  EXPECT_EQ(st.nonSolidEntityBrushes, 2u);
+  size_t black = 0;
+  for (const Patch& p : s.patches) {
+    const Material& m = s.materials[p.material];
+    EXPECT_FALSE(m.isEmitter());
+    if (m.reflectance.isBlack()) {
+      ++black;
+      EXPECT_GT(p.polygon.centroid().x, 199);
+    } else {
+      EXPECT_GE(m.reflectance.r, 0.25);
+      EXPECT_LE(m.reflectance.r, 0.8);
+    }
+  }
+  EXPECT_EQ(black, 6u);
+  EXPECT_FALSE(s.report.warnings.empty());
+}
+
+TEST(MapToScene, SkipFacesAreNotDrawnButStillHide) {
+  // A skip-bottomed box standing on a floor: its bottom is not drawn, and the floor under it is
+  // hidden all the same (the box is solid).
+  std::string sides;
+  for (int k = 0; k < 3; ++k) {
+    sides += test::boxSide(k, -1, 0, k == 2 ? "skip" : "wall");
+    sides += test::boxSide(k, +1, 64, "wall");
+  }
+  MapImportStats st;
+  const Scene s = convert(world("{\n" + sides + "}\n" + boxBrush({-64, -64, -16}, {128, 128, 0})), &st);
+  EXPECT_EQ(st.skipFaces, 1u);
+  EXPECT_EQ(st.hiddenFaces, 0u);
+  EXPECT_EQ(st.cutFaces, 1u);  // the floor's top
+  EXPECT_NEAR(area(s), 5 * 64.0 * 64 + (2 * 192.0 * 192 - 64.0 * 64) + 4 * 192.0 * 16, 1e-6);
+}
+
+TEST(MapToScene, LightEntityBecomesAnEmittingCube) {
+  MapImportStats st;
+  const std::string text = world(boxBrush({-512, -512, -64}, {512, 512, -32})) +
+                           pointEntity("light", {0, 0, 64}, "\"light\" \"200\"\n") +
+                           pointEntity("light_torch_small_walltorch", {100, 0, 64}) +
+                           pointEntity("light", {-100, 0, 64}, "\"_color\" \"255 128 0\"\n") +
+                           pointEntity("monster_soldier_light", {0, 100, 64}) +
+                           pointEntity("light", {0, -100, 64}, "\"light\" \"-50\"\n");
+  const Scene s = convert(text, &st);
+  EXPECT_EQ(st.lights, 3u);
+  EXPECT_EQ(st.skippedLights, 1u);
+  // Emitted power per light: Ke × area over its patches, = kQuakeLightPowerPerValue × light.
+  std::map<int, double> power;  // keyed by the cube's x
+  std::map<int, Rgb> colour;
+  for (const Patch& p : s.patches) {
+    const Material& m = s.materials[p.material];
+    if (!m.isEmitter()) continue;
+    const int x = static_cast<int>(std::lround(p.polygon.centroid().x / 100));
+    power[x] += m.emission.r * p.polygon.area();
+    colour[x] = m.emission;
+    EXPECT_NEAR(p.polygon.centroid().z, 64, 4 + 1e-9);
+  }
+  ASSERT_EQ(power.size(), 3u);
+  EXPECT_NEAR(power[0], kQuakeLightPowerPerValue * 200, 1e-6);
+  EXPECT_NEAR(power[1], kQuakeLightPowerPerValue * kQuakeDefaultLight, 1e-6);
+  EXPECT_NEAR(power[-1], kQuakeLightPowerPerValue * kQuakeDefaultLight, 1e-6);
+  EXPECT_NEAR(colour[-1].g / colour[-1].r, 128.0 / 255.0, 1e-12);
+  EXPECT_EQ(colour[-1].b, 0);
+  EXPECT_EQ(s.emitterCount(), 18u);
+}
+
+TEST(MapToScene, LightCubeInsideAWallKeepsOnlyItsOutsidePart) {
+  // The cube [-4, 4]^3 around the origin against a wall filling x <= 0: the -x face and the
+  // halves of four faces inside the wall go.
+  const Scene s = convert(world(boxBrush({-64, -64, -64}, {0, 64, 64})) + pointEntity("light", {0, 0, 0}));
+  double emitting = 0;
+  for (const Patch& p : s.patches)
+    if (s.materials[p.material].isEmitter()) {
+      emitting += p.polygon.area();
+      EXPECT_GE(p.polygon.centroid().x, 0);
+    }
+  EXPECT_NEAR(emitting, 64 + 4 * 32, 1e-9);
+}
+
+TEST(MapToScene, DegenerateBrushesAreDroppedAndCounted) {
+  const std::string collinear = "{\n( 0 0 0 ) ( 1 1 1 ) ( 2 2 2 ) wall 0 0 0 1 1\n" +
+                                test::boxSide(0, 1, 64, "wall") + test::boxSide(1, 1, 64, "wall") +
+                                test::boxSide(2, 1, 64, "wall") + "}\n";
+  const std::string open = "{\n" + test::boxSide(0, 1, 64, "wall") + test::boxSide(1, 1, 64, "wall") +
+                           test::boxSide(2, 1, 64, "wall") + test::boxSide(2, -1, 0, "wall") + "}\n";
+  const std::string empty = "{\n" + test::boxSide(0, 1, 0, "wall") + test::boxSide(0, -1, 64, "wall") +
+                            test::boxSide(1, 1, 64, "wall") + test::boxSide(1, -1, 0, "wall") +
+                            test::boxSide(2, 1, 64, "wall") + test::boxSide(2, -1, 0, "wall") + "}\n";
+  MapImportStats st;
+  const Scene s = convert(world(collinear + open + empty + boxBrush({0, 0, 0}, {64, 64, 64})), &st);
+  EXPECT_EQ(st.degenerateBrushes, 3u);
+  EXPECT_EQ(s.patches.size(), 6u);
+  bool warned = false;
+  for (const std::string& w : s.report.warnings) warned = warned || w.find("degenerate brush") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
+TEST(MapToScene, MoversCanBeLeftOut) {
+  const std::string text = world(boxBrush({0, 0, 0}, {64, 64, 64})) + "{\n\"classname\" \"func_door\"\n" +
+                           boxBrush({0, 200, 0}, {64, 264, 64}) + "}\n";
+  EXPECT_EQ(convert(text).patches.size(), 12u);
+  MapImportOptions o;
+  o.includeMovers = false;
+  EXPECT_EQ(convert(text, nullptr, o).patches.size(), 6u);
+}
+
+TEST(MapToScene, BadEntitiesAndEmptyMapsAreInputErrors) {
+  EXPECT_THROW(convert(world("")), InputError);
+  EXPECT_THROW(convert(world(boxBrush({0, 0, 0}, {64, 64, 64}, "clip"))), InputError);
+  try {
+    convert(world(boxBrush({0, 0, 0}, {64, 64, 64})) + "{\n\"classname\" \"light\"\n\"origin\" \"1 2\"\n}\n");
+    ADD_FAILURE();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 13u);  // the light entity's brace
+  }
+  EXPECT_THROW(convert(world(boxBrush({0, 0, 0}, {64, 64, 64})) +
+                       pointEntity("light", {0, 0, 100}, "\"light\" \"bright\"\n")),
+               InputError);
+}
+
+TEST(MapToScene, LoadSceneAndTheCliTakeMapFiles) {
+  const auto dir = test::scratchDir();
+  const std::string path = test::writeFile(dir / "room.map", world(boxBrush({0, 0, 0}, {64, 64, 64})) +
+                                                                  pointEntity("light", {32, 32, 100}));
+  const Scene s = loadScene(path);
+  EXPECT_EQ(s.patches.size(), 12u);
+  const test::CliResult r = test::runCli("info '" + path + "'");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("patches      12"), std::string::npos) << r.output;
+  const std::string bad = test::writeFile(dir / "bad.map", "{\n{\n( 0 0 0 ) oops\n}\n}\n");
+  const test::CliResult rb = test::runCli("info '" + bad + "'");
+  EXPECT_EQ(rb.exitCode, 2) << rb.output;
+  EXPECT_NE(rb.output.find("bad.map:3"), std::string::npos) << rb.output;
+}
+
+}  // namespace
+}  // namespace gv
