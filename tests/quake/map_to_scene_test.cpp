@@ -94,6 +94,21 @@ TEST(MapToScene, PartlyTouchingBrushesKeepTheUncoveredPart) {
   EXPECT_NEAR(area(s), 2 * (64.0 * 96 * 2 + 96.0 * 96) + 4 * 32.0 * 32, 1e-6);
 }
 
+TEST(MapToScene, NearlyTouchingBrushesAreSnappedShut) {
+  // An off-grid brush 0.003 units short of its neighbour (rounded editor output) in a map of
+  // Quake size (a far pillar makes the diagonal ~11,000 units: model tolerance ~0.11 units): the
+  // planes are merged, the brushes touch and their shared face disappears.
+  const std::string far = boxBrush({8000, 8000, 0}, {8064, 8064, 64});
+  MapImportStats st;
+  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({64.003, 0, 0}, {128, 64, 64}) + far), &st);
+  EXPECT_EQ(s.patches.size(), 16u);
+  EXPECT_EQ(st.hiddenFaces, 2u);
+  EXPECT_NEAR(area(s), 16 * 64.0 * 64.0, 1e-6);
+  // A real gap (a unit, beyond the tolerance) stays open.
+  const Scene open = convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({65, 0, 0}, {128, 64, 64}) + far));
+  EXPECT_EQ(open.patches.size(), 18u);
+}
+
 TEST(MapToScene, BrushInsideAnotherGivesNothing) {
   MapImportStats st;
   const Scene s = convert(world(boxBrush({0, 0, 0}, {128, 128, 128}) + boxBrush({32, 32, 32}, {64, 64, 64})), &st);
