@@ -39,7 +39,8 @@ Plane PlaneSnapper::snap(const Plane& plane, const Vec3& centre, double radius) 
   return plane;
 }
 
-std::optional<BrushSolid> brushSolid(const MapBrush& brush, const Tolerance& tol, PlaneSnapper* snapper) {
+std::optional<BrushSolid> brushSolid(const MapBrush& brush, const Tolerance& tol,
+                                     PlaneSnapper* snapper) {
   if (brush.sides.size() < 4) return std::nullopt;
   std::vector<Plane> planes;
   planes.reserve(brush.sides.size());
@@ -67,7 +68,8 @@ std::optional<BrushSolid> brushSolid(const MapBrush& brush, const Tolerance& tol
     int best = 0;
     double bestScore = -INFINITY;
     for (size_t i = 0; i < planes.size(); ++i) {
-      const double score = dot(planes[i].normal, h.normal) - std::abs(planes[i].offset - h.offset) / tol.scale;
+      const double score =
+          dot(planes[i].normal, h.normal) - std::abs(planes[i].offset - h.offset) / tol.scale;
       if (score > bestScore + 1e-15) {
         bestScore = score;
         best = static_cast<int>(i);

@@ -83,10 +83,13 @@ class Reader {
     ++pos_;
     return t;
   }
-  bool peekIs(const char* s) const { return !atEnd() && !tokens_[pos_].quoted && tokens_[pos_].text == s; }
+  bool peekIs(const char* s) const {
+    return !atEnd() && !tokens_[pos_].quoted && tokens_[pos_].text == s;
+  }
   void expect(const char* s) {
     const Token& t = next(s);
-    if (t.quoted || t.text != s) fail(t.line, std::string("expected '") + s + "', got '" + t.text + "'");
+    if (t.quoted || t.text != s)
+      fail(t.line, std::string("expected '") + s + "', got '" + t.text + "'");
   }
   static std::optional<double> toNumber(const std::string& s) {
     double v = 0;
@@ -178,8 +181,8 @@ class Reader {
     MapBrushSide s;
     const Token& first = peek("'(' or '}'");
     if (first.quoted || first.text != "(")
-      fail(first.line, "expected '(' starting a brush side or '}' closing the brush, got '" +
-                           first.text + "'");
+      fail(first.line,
+           "expected '(' starting a brush side or '}' closing the brush, got '" + first.text + "'");
     s.line = first.line;
     for (Vec3& p : s.points) p = point();
     const Token& tex = next("a texture name");
@@ -192,7 +195,8 @@ class Reader {
         for (int k = 0; k < 4; ++k) number(axis);
         expect("]");
       }
-      for (const char* what : {"texture rotation", "texture x scale", "texture y scale"}) number(what);
+      for (const char* what : {"texture rotation", "texture x scale", "texture y scale"})
+        number(what);
     } else {  // standard: xoff yoff rot xscale yscale
       for (const char* what : {"texture x offset", "texture y offset", "texture rotation",
                                "texture x scale", "texture y scale"})
@@ -231,6 +235,8 @@ MapFile parseMapText(const std::string& path, const std::string& text) {
   return Reader(path, tokenize(path, text)).readFile();
 }
 
-MapFile readMapFile(const std::string& path) { return parseMapText(path, readWholeFile(path)); }
+MapFile readMapFile(const std::string& path) {
+  return parseMapText(path, readWholeFile(path));
+}
 
 }  // namespace gv

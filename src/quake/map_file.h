@@ -1,5 +1,6 @@
 // Quake level sources (.map, id Tech 2 / ericw-tools): entities with key/value pairs and convex
-// brushes given by 3-point planes. Standard and Valve 220 texture axes; the scene input of issue #7.
+// brushes given by 3-point planes. Standard and Valve 220 texture axes; the scene input of issue
+// #7.
 #pragma once
 
 #include <array>

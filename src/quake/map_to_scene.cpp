@@ -11,10 +11,11 @@
 // - Brush planes closer than the model tolerance are merged first (PlaneSnapper, brush_csg.h), as
 //   qbsp does, so that brushes meant to touch do touch.
 // - Hidden surfaces: a face's parts inside another solid, or flat against an opposite-facing face
-//   of one (two solids touching), are removed; of two coincident same-facing faces the earlier
-//   brush's is kept. func_detail_wall brushes hide nothing (ericw-tools: they do not clip the
-//   world), so the faces behind their skip sides stay. Coplanarity is decided within the model tolerance (Tolerance::planeOffset),
-//   the one the BSP uses to merge planes.
+//   of one (two solids touching), are removed; of two coincident same-facing faces exactly one
+//   is kept (that of the brush first in a fixed order: by least x, then file order).
+//   func_detail_wall brushes hide nothing (ericw-tools: they do not clip the world), so the faces
+//   behind their skip sides stay. Coplanarity is decided within the model tolerance
+//   (Tolerance::planeOffset), the one the BSP uses to merge planes.
 // - Materials: one per texture name; Kd from a hash of the lower-cased name (see textureColour).
 // - Lights: light and light_* entities → an outward cube of lightCubeSize at "origin", emitted
 //   power kQuakeLightPowerPerValue × "light" (default 300), coloured by "_color"; the cube's parts
@@ -39,7 +40,9 @@ std::string lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
-bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+bool startsWith(const std::string& s, const char* prefix) {
+  return s.rfind(prefix, 0) == 0;
+}
 
 enum class EntityKind { Solid, Mover, NonSolid };
 
@@ -48,10 +51,10 @@ EntityKind entityKind(const std::string& className) {
   if (startsWith(c, "trigger_") || startsWith(c, "info_") || c == "func_illusionary" ||
       c == "func_detail_illusionary" || c == "func_areaportal")
     return EntityKind::NonSolid;
-  static const char* const movers[] = {"func_door", "func_door_secret", "func_plat", "func_button",
-                                       "func_train", "func_rotating", "func_explosive",
-                                       "func_movewall", "func_bobbingwater", "func_breakable",
-                                       "rotate_object"};
+  static const char* const movers[] = {"func_door",      "func_door_secret", "func_plat",
+                                       "func_button",    "func_train",       "func_rotating",
+                                       "func_explosive", "func_movewall",    "func_bobbingwater",
+                                       "func_breakable", "rotate_object"};
   for (const char* m : movers)
     if (c == m) return EntityKind::Mover;
   return EntityKind::Solid;
@@ -88,7 +91,8 @@ Rgb textureColour(const std::string& texture) {
   }
   auto unit = [&h](int shift) { return static_cast<double>((h >> shift) & 0xffff) / 65535.0; };
   const double grey = 0.3 + 0.4 * unit(0);
-  return {grey * (0.9 + 0.2 * unit(16)), grey * (0.9 + 0.2 * unit(32)), grey * (0.9 + 0.2 * unit(48))};
+  return {grey * (0.9 + 0.2 * unit(16)), grey * (0.9 + 0.2 * unit(32)),
+          grey * (0.9 + 0.2 * unit(48))};
 }
 
 std::vector<double> numbers(const std::string& text) {
@@ -181,14 +185,30 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
         if (!options.includeMovers) continue;
       }
       switch (brushKind(b)) {
-        case BrushKind::Clip: ++st.clipBrushes; continue;
-        case BrushKind::Hint: ++st.hintBrushes; continue;
-        case BrushKind::Origin: ++st.originBrushes; continue;
-        case BrushKind::Trigger: ++st.triggerBrushes; continue;
-        case BrushKind::Liquid: ++st.liquidBrushes; continue;
-        case BrushKind::SkipOnly: ++st.skipOnlyBrushes; continue;
-        case BrushKind::Sky: chosenSky.push_back(true); break;
-        case BrushKind::Solid: chosenSky.push_back(false); break;
+        case BrushKind::Clip:
+          ++st.clipBrushes;
+          continue;
+        case BrushKind::Hint:
+          ++st.hintBrushes;
+          continue;
+        case BrushKind::Origin:
+          ++st.originBrushes;
+          continue;
+        case BrushKind::Trigger:
+          ++st.triggerBrushes;
+          continue;
+        case BrushKind::Liquid:
+          ++st.liquidBrushes;
+          continue;
+        case BrushKind::SkipOnly:
+          ++st.skipOnlyBrushes;
+          continue;
+        case BrushKind::Sky:
+          chosenSky.push_back(true);
+          break;
+        case BrushKind::Solid:
+          chosenSky.push_back(false);
+          break;
       }
       chosen.emplace_back(&b, first);
       chosenHides.push_back(lower(e.className()) != "func_detail_wall");
@@ -209,14 +229,16 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
       degenerateLines.push_back(chosen[i].first->line);
       continue;
     }
-    solids.push_back({std::move(*s), chosen[i].first, chosen[i].second, chosenSky[i], chosenHides[i]});
+    solids.push_back(
+        {std::move(*s), chosen[i].first, chosen[i].second, chosenSky[i], chosenHides[i]});
     st.skyBrushes += chosenSky[i] ? 1 : 0;
   }
   st.solidBrushes = solids.size();
   // Stable sort keeps file order among equal keys; the tie rule compares sorted positions, which
   // is a fixed total order, so exactly one of two coincident faces survives either way.
-  std::stable_sort(solids.begin(), solids.end(),
-                   [](const Solid& a, const Solid& b) { return a.solid.box.lo.x < b.solid.box.lo.x; });
+  std::stable_sort(solids.begin(), solids.end(), [](const Solid& a, const Solid& b) {
+    return a.solid.box.lo.x < b.solid.box.lo.x;
+  });
 
   // 3. Visible parts of every face → patches, one material per texture.
   std::map<std::string, uint32_t> materialOf;
@@ -249,7 +271,8 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
       if (startsWith(t, "sky")) ++st.skyFaces;
       const uint32_t material = materialFor(texture);
       for (ConvexPolygon& p : parts)
-        scene.patches.push_back({std::move(p), material, s.firstSourceFace + static_cast<uint32_t>(side)});
+        scene.patches.push_back(
+            {std::move(p), material, s.firstSourceFace + static_cast<uint32_t>(side)});
     }
   }
 
@@ -265,7 +288,8 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     double value = kQuakeDefaultLight;
     if (const std::string* l = e.value("light")) {
       const std::vector<double> v = numbers(*l);
-      if (v.empty()) throw InputError(path, e.line, "light entity has a non-numeric \"light\" value");
+      if (v.empty())
+        throw InputError(path, e.line, "light entity has a non-numeric \"light\" value");
       value = v.front();
     }
     Rgb colour{1, 1, 1};
@@ -282,7 +306,8 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     }
     std::vector<ConvexPolygon> faces;
     for (const ConvexPolygon& f : cubeFaces({o[0], o[1], o[2]}, 0.5 * options.lightCubeSize))
-      for (ConvexPolygon& p : visibleOf(f, solids.size(), solids, tol)) faces.push_back(std::move(p));
+      for (ConvexPolygon& p : visibleOf(f, solids.size(), solids, tol))
+        faces.push_back(std::move(p));
     if (faces.empty()) {
       ++st.skippedLights;
       continue;
@@ -294,10 +319,12 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     if (it == lightMaterial.end())
       it = lightMaterial
                .emplace(key, scene.addMaterial({"light_" + std::to_string(lightMaterial.size()),
-                                                {0.8, 0.8, 0.8}, emission}))
+                                                {0.8, 0.8, 0.8},
+                                                emission}))
                .first;
     ++st.lights;
-    for (ConvexPolygon& p : faces) scene.patches.push_back({std::move(p), it->second, kNoSourceFace});
+    for (ConvexPolygon& p : faces)
+      scene.patches.push_back({std::move(p), it->second, kNoSourceFace});
   }
   st.patches = scene.patches.size();
 
@@ -306,8 +333,10 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
   auto note = [&](size_t n, const std::string& what) {
     if (n > 0) report.warnings.push_back(path + ": " + std::to_string(n) + " " + what);
   };
-  note(st.nonSolidEntityBrushes, "brush(es) of non-solid entities (trigger_*, func_illusionary, info_* ...) skipped");
-  if (!options.includeMovers) note(st.moverBrushes, "mover brush(es) (doors, plats, buttons ...) skipped");
+  note(st.nonSolidEntityBrushes,
+       "brush(es) of non-solid entities (trigger_*, func_illusionary, info_* ...) skipped");
+  if (!options.includeMovers)
+    note(st.moverBrushes, "mover brush(es) (doors, plats, buttons ...) skipped");
   note(st.clipBrushes, "clip brush(es) skipped");
   note(st.hintBrushes, "hint brush(es) skipped");
   note(st.originBrushes, "origin brush(es) skipped");
@@ -318,15 +347,18 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     std::string lines;
     for (size_t k = 0; k < std::min<size_t>(degenerateLines.size(), 5); ++k)
       lines += (k ? ", " : "") + std::to_string(degenerateLines[k]);
-    note(st.degenerateBrushes, "degenerate brush(es) dropped (collinear points, empty, flat or "
-                               "unbounded), at line(s) " + lines + (degenerateLines.size() > 5 ? ", ..." : ""));
+    note(st.degenerateBrushes,
+         "degenerate brush(es) dropped (collinear points, empty, flat or "
+         "unbounded), at line(s) " +
+             lines + (degenerateLines.size() > 5 ? ", ..." : ""));
   }
   note(st.skyFaces, "sky face(s) kept as black (absorbing) patches");
   note(st.skippedLights, "light(s) skipped (light value <= 0, or inside solids)");
   if (statsOut) *statsOut = st;
   if (scene.patches.empty())
-    throw InputError(path, 0, "the map has no visible solid face (" + std::to_string(st.brushesIn) +
-                                  " brushes, " + std::to_string(st.solidBrushes) + " solid)");
+    throw InputError(path, 0,
+                     "the map has no visible solid face (" + std::to_string(st.brushesIn) +
+                         " brushes, " + std::to_string(st.solidBrushes) + " solid)");
   return scene;
 }
 

@@ -35,10 +35,12 @@ Scene importWithAssimp(const std::string& path) {
   Assimp::Importer importer;
   // Node transforms baked into the vertices; no triangulation (the patch rules decide), points
   // and lines dropped by sorting primitive types apart and skipping them below.
-  const aiScene* ai = importer.ReadFile(
-      path, aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType);
+  const aiScene* ai =
+      importer.ReadFile(path, aiProcess_PreTransformVertices | aiProcess_JoinIdenticalVertices |
+                                  aiProcess_SortByPType);
   if (!ai || (ai->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !ai->mRootNode)
-    throw InputError(path, 0, std::string("cannot be read as a mesh: ") + importer.GetErrorString());
+    throw InputError(path, 0,
+                     std::string("cannot be read as a mesh: ") + importer.GetErrorString());
 
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -57,7 +59,8 @@ Scene importWithAssimp(const std::string& path) {
                         : colourOf(m, AI_MATKEY_BASE_COLOR,
                                    colourOf(m, AI_MATKEY_COLOR_DIFFUSE, {0.5, 0.5, 0.5}));
     const Rgb ke = none ? Rgb{} : colourOf(m, AI_MATKEY_COLOR_EMISSIVE, {});
-    scene.addMaterial({name.length > 0 ? std::string(name.C_Str()) : "material_" + std::to_string(i), kd, ke});
+    scene.addMaterial(
+        {name.length > 0 ? std::string(name.C_Str()) : "material_" + std::to_string(i), kd, ke});
   }
   uint32_t defaultMaterial = UINT32_MAX;
 
@@ -67,8 +70,9 @@ Scene importWithAssimp(const std::string& path) {
     for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
       const aiVector3D& p = mesh.mVertices[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-        throw InputError(path, 0, "mesh " + std::to_string(k) + " vertex " + std::to_string(v) +
-                                      " has a non-finite coordinate");
+        throw InputError(path, 0,
+                         "mesh " + std::to_string(k) + " vertex " + std::to_string(v) +
+                             " has a non-finite coordinate");
       box.add(Vec3{p.x, p.y, p.z});
     }
   }
@@ -95,10 +99,17 @@ Scene importWithAssimp(const std::string& path) {
       }
       const FacePatches converted = faceToPatches(polygon, tol);
       switch (converted.outcome) {
-        case FaceOutcome::Degenerate: ++report.droppedDegenerate; continue;
-        case FaceOutcome::SplitConvex: ++report.splitNonConvex; break;
-        case FaceOutcome::Triangulated: ++report.triangulatedNonPlanar; break;
-        case FaceOutcome::Convex: break;
+        case FaceOutcome::Degenerate:
+          ++report.droppedDegenerate;
+          continue;
+        case FaceOutcome::SplitConvex:
+          ++report.splitNonConvex;
+          break;
+        case FaceOutcome::Triangulated:
+          ++report.triangulatedNonPlanar;
+          break;
+        case FaceOutcome::Convex:
+          break;
       }
       uint32_t material = mesh.mMaterialIndex;
       if (material >= scene.materials.size()) {
@@ -106,16 +117,18 @@ Scene importWithAssimp(const std::string& path) {
           defaultMaterial = scene.addMaterial({"default_grey", {0.5, 0.5, 0.5}, {}});
         material = defaultMaterial;
       }
-      for (const ConvexPolygon& piece : converted.pieces) scene.patches.push_back({piece, material, index});
+      for (const ConvexPolygon& piece : converted.pieces)
+        scene.patches.push_back({piece, material, index});
     }
   }
   if (pointsAndLines > 0)
     report.warnings.push_back(path + ": " + std::to_string(pointsAndLines) +
                               " point / line primitive(s) skipped (not surfaces)");
   if (scene.patches.empty())
-    throw InputError(path, 0, report.facesIn == 0 ? "the scene has no faces"
-                                                  : "the scene has no usable face (all " +
-                                                        std::to_string(report.facesIn) + " are degenerate)");
+    throw InputError(path, 0,
+                     report.facesIn == 0 ? "the scene has no faces"
+                                         : "the scene has no usable face (all " +
+                                               std::to_string(report.facesIn) + " are degenerate)");
   return scene;
 }
 

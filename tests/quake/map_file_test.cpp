@@ -92,7 +92,8 @@ TEST(MapFile, MalformedInputNamesTheLine) {
   // Extra junk after a side's fields.
   EXPECT_EQ(errorLine("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) tex 0 0 0 1 1 junk\n}\n}\n"), 3u);
   // Valve axis with a missing bracket.
-  EXPECT_EQ(errorLine("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) tex [ 1 0 0 0 [ 0 1 0 0 ] 0 1 1\n}\n}\n"), 3u);
+  EXPECT_EQ(
+      errorLine("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) tex [ 1 0 0 0 [ 0 1 0 0 ] 0 1 1\n}\n}\n"), 3u);
   // A top-level token that is not '{'.
   EXPECT_EQ(errorLine("\n\n}\n"), 3u);
 }

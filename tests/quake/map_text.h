@@ -17,7 +17,8 @@ inline std::string boxSide(int k, int s, double at, const std::string& texture) 
   p0[(k + 1) % 3] += 64;
   p2[(k + 2) % 3] += 64 * s;
   auto pt = [](const double* p) {
-    return "( " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + " ) ";
+    return "( " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
+           " ) ";
   };
   return pt(p0) + pt(p1) + pt(p2) + texture + " 0 0 0 1 1\n";
 }

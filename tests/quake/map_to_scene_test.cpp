@@ -19,7 +19,8 @@ using test::boxBrush;
 using test::pointEntity;
 using test::world;
 
-Scene convert(const std::string& text, MapImportStats* stats = nullptr, const MapImportOptions& o = {}) {
+Scene convert(const std::string& text, MapImportStats* stats = nullptr,
+              const MapImportOptions& o = {}) {
   return mapToScene(parseMapText("t.map", text), "t.map", o, stats);
 }
 
@@ -27,7 +28,9 @@ void expectNear(const Vec3& a, const Vec3& b) {
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], 1e-9) << k;
 }
 
-double area(const Scene& s) { return s.totalArea(); }
+double area(const Scene& s) {
+  return s.totalArea();
+}
 
 /// True when some patch's interior lies in plane `axis = at`.
 bool anyPatchOnPlane(const Scene& s, int axis, double at) {
@@ -74,7 +77,8 @@ TEST(MapToScene, RealBrushFromQbspfeaturesFacesOut) {
 
 TEST(MapToScene, TouchingBrushesLoseTheSharedFace) {
   MapImportStats st;
-  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({64, 0, 0}, {128, 64, 64})), &st);
+  const Scene s =
+      convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({64, 0, 0}, {128, 64, 64})), &st);
   EXPECT_EQ(s.patches.size(), 10u);
   EXPECT_NEAR(area(s), 10 * 64.0 * 64.0, 1e-6);
   EXPECT_FALSE(anyPatchOnPlane(s, 0, 64));
@@ -83,7 +87,8 @@ TEST(MapToScene, TouchingBrushesLoseTheSharedFace) {
 
 TEST(MapToScene, PartlyTouchingBrushesKeepTheUncoveredPart) {
   // A small box against the middle of a big one's +x face: the big face keeps a frame around it.
-  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 96, 96}) + boxBrush({64, 32, 32}, {96, 64, 64})));
+  const Scene s =
+      convert(world(boxBrush({0, 0, 0}, {64, 96, 96}) + boxBrush({64, 32, 32}, {96, 64, 64})));
   double onPlane = 0;
   for (const Patch& p : s.patches)
     if (std::abs(p.polygon.centroid().x - 64) < 1e-9) {
@@ -100,18 +105,22 @@ TEST(MapToScene, NearlyTouchingBrushesAreSnappedShut) {
   // planes are merged, the brushes touch and their shared face disappears.
   const std::string far = boxBrush({8000, 8000, 0}, {8064, 8064, 64});
   MapImportStats st;
-  const Scene s = convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({64.003, 0, 0}, {128, 64, 64}) + far), &st);
+  const Scene s = convert(
+      world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({64.003, 0, 0}, {128, 64, 64}) + far),
+      &st);
   EXPECT_EQ(s.patches.size(), 16u);
   EXPECT_EQ(st.hiddenFaces, 2u);
   EXPECT_NEAR(area(s), 16 * 64.0 * 64.0, 1e-6);
   // A real gap (a unit, beyond the tolerance) stays open.
-  const Scene open = convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({65, 0, 0}, {128, 64, 64}) + far));
+  const Scene open =
+      convert(world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({65, 0, 0}, {128, 64, 64}) + far));
   EXPECT_EQ(open.patches.size(), 18u);
 }
 
 TEST(MapToScene, BrushInsideAnotherGivesNothing) {
   MapImportStats st;
-  const Scene s = convert(world(boxBrush({0, 0, 0}, {128, 128, 128}) + boxBrush({32, 32, 32}, {64, 64, 64})), &st);
+  const Scene s = convert(
+      world(boxBrush({0, 0, 0}, {128, 128, 128}) + boxBrush({32, 32, 32}, {64, 64, 64})), &st);
   EXPECT_EQ(s.patches.size(), 6u);
   EXPECT_NEAR(area(s), 6 * 128.0 * 128.0, 1e-6);
   EXPECT_EQ(st.hiddenFaces, 6u);
@@ -121,14 +130,16 @@ TEST(MapToScene, OverlappingBrushesGiveTheUnionsSurface) {
   // A = [0,64]^3, B = A + (32, 32, 0): the union's surface (tops and bottoms coincide in part:
   // exactly one copy each) is 2 · (2·64² − 32²) + perimeter 6·64 × height 64.
   for (bool reversed : {false, true}) {
-    const std::string a = boxBrush({0, 0, 0}, {64, 64, 64}), b = boxBrush({32, 32, 0}, {96, 96, 64});
+    const std::string a = boxBrush({0, 0, 0}, {64, 64, 64}),
+                      b = boxBrush({32, 32, 0}, {96, 96, 64});
     const Scene s = convert(world(reversed ? b + a : a + b));
     const double expected = 2 * (2 * 64.0 * 64 - 32.0 * 32) + 6 * 64.0 * 64;
     EXPECT_NEAR(area(s), expected, 1e-6) << reversed;
     // No point of a patch lies strictly inside either box (an independent check of the cut).
     for (const Patch& p : s.patches) {
       const Vec3 c = p.polygon.centroid();
-      for (const auto& [lo, hi] : {std::pair{Vec3{0, 0, 0}, Vec3{64, 64, 64}}, std::pair{Vec3{32, 32, 0}, Vec3{96, 96, 64}}}) {
+      for (const auto& [lo, hi] : {std::pair{Vec3{0, 0, 0}, Vec3{64, 64, 64}},
+                                   std::pair{Vec3{32, 32, 0}, Vec3{96, 96, 64}}}) {
         const bool inside = c.x > lo.x + 1e-6 && c.x < hi.x - 1e-6 && c.y > lo.y + 1e-6 &&
                             c.y < hi.y - 1e-6 && c.z > lo.z + 1e-6 && c.z < hi.z - 1e-6;
         EXPECT_FALSE(inside);
@@ -141,9 +152,12 @@ TEST(MapToScene, NonSolidBrushesAreSkippedAndSkyIsBlack) {
   MapImportStats st;
   const std::string text =
       world(boxBrush({0, 0, 0}, {64, 64, 64}) + boxBrush({200, 0, 0}, {264, 64, 64}, "sky4") +
-            boxBrush({400, 0, 0}, {464, 64, 64}, "clip") + boxBrush({600, 0, 0}, {664, 64, 64}, "*water1") +
-            boxBrush({800, 0, 0}, {864, 64, 64}, "hint") + boxBrush({1000, 0, 0}, {1064, 64, 64}, "skip") +
-            boxBrush({1200, 0, 0}, {1264, 64, 64}, "origin") + boxBrush({1400, 0, 0}, {1464, 64, 64}, "trigger")) +
+            boxBrush({400, 0, 0}, {464, 64, 64}, "clip") +
+            boxBrush({600, 0, 0}, {664, 64, 64}, "*water1") +
+            boxBrush({800, 0, 0}, {864, 64, 64}, "hint") +
+            boxBrush({1000, 0, 0}, {1064, 64, 64}, "skip") +
+            boxBrush({1200, 0, 0}, {1264, 64, 64}, "origin") +
+            boxBrush({1400, 0, 0}, {1464, 64, 64}, "trigger")) +
       "{\n\"classname\" \"trigger_once\"\n" + boxBrush({0, 200, 0}, {64, 264, 64}) + "}\n" +
       "{\n\"classname\" \"func_illusionary\"\n" + boxBrush({0, 400, 0}, {64, 464, 64}) + "}\n" +
       "{\n\"classname\" \"func_detail\"\n" + boxBrush({0, 600, 0}, {64, 664, 64}) + "}\n";
@@ -183,7 +197,8 @@ TEST(MapToScene, SkipFacesAreNotDrawnButStillHide) {
     sides += test::boxSide(k, +1, 64, "wall");
   }
   MapImportStats st;
-  const Scene s = convert(world("{\n" + sides + "}\n" + boxBrush({-64, -64, -16}, {128, 128, 0})), &st);
+  const Scene s =
+      convert(world("{\n" + sides + "}\n" + boxBrush({-64, -64, -16}, {128, 128, 0})), &st);
   EXPECT_EQ(st.skipFaces, 1u);
   EXPECT_EQ(st.hiddenFaces, 0u);
   EXPECT_EQ(st.cutFaces, 1u);  // the floor's top
@@ -224,7 +239,8 @@ TEST(MapToScene, LightEntityBecomesAnEmittingCube) {
 TEST(MapToScene, LightCubeInsideAWallKeepsOnlyItsOutsidePart) {
   // The cube [-4, 4]^3 around the origin against a wall filling x <= 0: the -x face and the
   // halves of four faces inside the wall go.
-  const Scene s = convert(world(boxBrush({-64, -64, -64}, {0, 64, 64})) + pointEntity("light", {0, 0, 0}));
+  const Scene s =
+      convert(world(boxBrush({-64, -64, -64}, {0, 64, 64})) + pointEntity("light", {0, 0, 0}));
   double emitting = 0;
   for (const Patch& p : s.patches)
     if (s.materials[p.material].isEmitter()) {
@@ -238,22 +254,26 @@ TEST(MapToScene, DegenerateBrushesAreDroppedAndCounted) {
   const std::string collinear = "{\n( 0 0 0 ) ( 1 1 1 ) ( 2 2 2 ) wall 0 0 0 1 1\n" +
                                 test::boxSide(0, 1, 64, "wall") + test::boxSide(1, 1, 64, "wall") +
                                 test::boxSide(2, 1, 64, "wall") + "}\n";
-  const std::string open = "{\n" + test::boxSide(0, 1, 64, "wall") + test::boxSide(1, 1, 64, "wall") +
-                           test::boxSide(2, 1, 64, "wall") + test::boxSide(2, -1, 0, "wall") + "}\n";
-  const std::string empty = "{\n" + test::boxSide(0, 1, 0, "wall") + test::boxSide(0, -1, 64, "wall") +
-                            test::boxSide(1, 1, 64, "wall") + test::boxSide(1, -1, 0, "wall") +
-                            test::boxSide(2, 1, 64, "wall") + test::boxSide(2, -1, 0, "wall") + "}\n";
+  const std::string open = "{\n" + test::boxSide(0, 1, 64, "wall") +
+                           test::boxSide(1, 1, 64, "wall") + test::boxSide(2, 1, 64, "wall") +
+                           test::boxSide(2, -1, 0, "wall") + "}\n";
+  const std::string empty = "{\n" + test::boxSide(0, 1, 0, "wall") +
+                            test::boxSide(0, -1, 64, "wall") + test::boxSide(1, 1, 64, "wall") +
+                            test::boxSide(1, -1, 0, "wall") + test::boxSide(2, 1, 64, "wall") +
+                            test::boxSide(2, -1, 0, "wall") + "}\n";
   MapImportStats st;
   const Scene s = convert(world(collinear + open + empty + boxBrush({0, 0, 0}, {64, 64, 64})), &st);
   EXPECT_EQ(st.degenerateBrushes, 3u);
   EXPECT_EQ(s.patches.size(), 6u);
   bool warned = false;
-  for (const std::string& w : s.report.warnings) warned = warned || w.find("degenerate brush") != std::string::npos;
+  for (const std::string& w : s.report.warnings)
+    warned = warned || w.find("degenerate brush") != std::string::npos;
   EXPECT_TRUE(warned);
 }
 
 TEST(MapToScene, MoversCanBeLeftOut) {
-  const std::string text = world(boxBrush({0, 0, 0}, {64, 64, 64})) + "{\n\"classname\" \"func_door\"\n" +
+  const std::string text = world(boxBrush({0, 0, 0}, {64, 64, 64})) +
+                           "{\n\"classname\" \"func_door\"\n" +
                            boxBrush({0, 200, 0}, {64, 264, 64}) + "}\n";
   EXPECT_EQ(convert(text).patches.size(), 12u);
   MapImportOptions o;
@@ -265,7 +285,8 @@ TEST(MapToScene, BadEntitiesAndEmptyMapsAreInputErrors) {
   EXPECT_THROW(convert(world("")), InputError);
   EXPECT_THROW(convert(world(boxBrush({0, 0, 0}, {64, 64, 64}, "clip"))), InputError);
   try {
-    convert(world(boxBrush({0, 0, 0}, {64, 64, 64})) + "{\n\"classname\" \"light\"\n\"origin\" \"1 2\"\n}\n");
+    convert(world(boxBrush({0, 0, 0}, {64, 64, 64})) +
+            "{\n\"classname\" \"light\"\n\"origin\" \"1 2\"\n}\n");
     ADD_FAILURE();
   } catch (const InputError& e) {
     EXPECT_EQ(e.line(), 13u);  // the light entity's brace
@@ -277,8 +298,9 @@ TEST(MapToScene, BadEntitiesAndEmptyMapsAreInputErrors) {
 
 TEST(MapToScene, LoadSceneAndTheCliTakeMapFiles) {
   const auto dir = test::scratchDir();
-  const std::string path = test::writeFile(dir / "room.map", world(boxBrush({0, 0, 0}, {64, 64, 64})) +
-                                                                  pointEntity("light", {32, 32, 100}));
+  const std::string path =
+      test::writeFile(dir / "room.map", world(boxBrush({0, 0, 0}, {64, 64, 64})) +
+                                            pointEntity("light", {32, 32, 100}));
   const Scene s = loadScene(path);
   EXPECT_EQ(s.patches.size(), 12u);
   const test::CliResult r = test::runCli("info '" + path + "'");

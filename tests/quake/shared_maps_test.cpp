@@ -47,10 +47,10 @@ std::vector<bool> reachable(const Subdivision& sub, uint32_t start) {
 
 struct SealReport {
   size_t cells = 0, portals = 0;
-  size_t fromStart = 0;   ///< cells reachable from the start point
-  size_t voidCells = 0;   ///< cells reachable from outside the scene box
-  size_t leaking = 0;     ///< cells reachable from both
-  size_t inSolid = 0;     ///< cells reachable from the start whose centroid is inside a brush
+  size_t fromStart = 0;       ///< cells reachable from the start point
+  size_t voidCells = 0;       ///< cells reachable from outside the scene box
+  size_t leaking = 0;         ///< cells reachable from both
+  size_t inSolid = 0;         ///< cells reachable from the start whose centroid is inside a brush
   bool voidConnected = true;  ///< all 8 corners of the root box reached from one of them
 };
 
@@ -111,10 +111,11 @@ SealReport sealOfSharedMap(const std::string& name, const std::string& startClas
   const MapFile map = readMapFile(path);
   const Scene scene = mapToScene(map, path, options);
   const SealReport r = seal(map, scene, originOf(map, startClass));
-  std::printf("%-22s %6zu patches %6zu cells %6zu portals: %5zu cells reachable from %s, %5zu in "
-              "the void, %zu leaking, %zu inside solids\n",
-              name.c_str(), scene.patches.size(), r.cells, r.portals, r.fromStart,
-              startClass.c_str(), r.voidCells, r.leaking, r.inSolid);
+  std::printf(
+      "%-22s %6zu patches %6zu cells %6zu portals: %5zu cells reachable from %s, %5zu in "
+      "the void, %zu leaking, %zu inside solids\n",
+      name.c_str(), scene.patches.size(), r.cells, r.portals, r.fromStart, startClass.c_str(),
+      r.voidCells, r.leaking, r.inSolid);
   return r;
 }
 
@@ -127,11 +128,13 @@ TEST(QuakeSharedMaps, EveryMapConverts) {
     MapImportStats st;
     const auto t0 = std::chrono::steady_clock::now();
     const Scene s = importMap(path, {}, &st);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("%-22s brushes %5zu solid %5zu degenerate %3zu faces %6zu hidden %6zu cut %5zu "
-                "lights %4zu patches %6zu  %.2f s\n",
-                entry.path().filename().c_str(), st.brushesIn, st.solidBrushes, st.degenerateBrushes,
-                st.brushFaces, st.hiddenFaces, st.cutFaces, st.lights, st.patches, seconds);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::printf(
+        "%-22s brushes %5zu solid %5zu degenerate %3zu faces %6zu hidden %6zu cut %5zu "
+        "lights %4zu patches %6zu  %.2f s\n",
+        entry.path().filename().c_str(), st.brushesIn, st.solidBrushes, st.degenerateBrushes,
+        st.brushFaces, st.hiddenFaces, st.cutFaces, st.lights, st.patches, seconds);
     EXPECT_GT(st.solidBrushes, 0u) << path;
     EXPECT_GT(s.emitterCount(), 0u) << path;
     // Few degenerate brushes in maps that qbsp compiled (a handful of slivers at most).
@@ -145,14 +148,15 @@ TEST(QuakeSharedMaps, TheSealCheckFindsAHole) {
   // A hollow room of six 16-unit walls around the air [0, 256]^3 is sealed; without its +x wall
   // the start reaches the void. (Checks the checker on a case with a known answer.)
   const std::vector<std::pair<Vec3, Vec3>> walls = {
-      {{-16, -16, -16}, {0, 272, 272}},  {{256, -16, -16}, {272, 272, 272}},
-      {{0, -16, -16}, {256, 0, 272}},    {{0, 256, -16}, {256, 272, 272}},
-      {{0, 0, -16}, {256, 256, 0}},      {{0, 0, 256}, {256, 256, 272}}};
+      {{-16, -16, -16}, {0, 272, 272}}, {{256, -16, -16}, {272, 272, 272}},
+      {{0, -16, -16}, {256, 0, 272}},   {{0, 256, -16}, {256, 272, 272}},
+      {{0, 0, -16}, {256, 256, 0}},     {{0, 0, 256}, {256, 256, 272}}};
   for (bool open : {false, true}) {
     std::string brushes;
     for (size_t i = 0; i < walls.size(); ++i)
       if (!(open && i == 1)) brushes += test::boxBrush(walls[i].first, walls[i].second);
-    const std::string text = test::world(brushes) + test::pointEntity("info_player_start", {128, 128, 64}) +
+    const std::string text = test::world(brushes) +
+                             test::pointEntity("info_player_start", {128, 128, 64}) +
                              test::pointEntity("light", {128, 128, 200});
     const MapFile map = parseMapText("room.map", text);
     const Scene scene = mapToScene(map, "room.map");

@@ -36,12 +36,13 @@ void append(std::string& bytes, T value) {
 TEST(AssimpImport, PlyPolygonBecomesConvexPatches) {
   const auto dir = test::scratchDir();
   // An L-shaped hexagon of area 3 in z = 1, counter-clockwise seen from +z.
-  const std::string path = test::writeFile(dir / "ell.ply",
-                                           "ply\nformat ascii 1.0\nelement vertex 6\n"
-                                           "property float x\nproperty float y\nproperty float z\n"
-                                           "element face 1\nproperty list uchar int vertex_indices\n"
-                                           "end_header\n0 0 1\n2 0 1\n2 1 1\n1 1 1\n1 2 1\n0 2 1\n"
-                                           "6 0 1 2 3 4 5\n");
+  const std::string path =
+      test::writeFile(dir / "ell.ply",
+                      "ply\nformat ascii 1.0\nelement vertex 6\n"
+                      "property float x\nproperty float y\nproperty float z\n"
+                      "element face 1\nproperty list uchar int vertex_indices\n"
+                      "end_header\n0 0 1\n2 0 1\n2 1 1\n1 1 1\n1 2 1\n0 2 1\n"
+                      "6 0 1 2 3 4 5\n");
   const Scene s = loadScene(path);
   EXPECT_EQ(s.report.facesIn, 1u);
   EXPECT_EQ(s.report.splitNonConvex, 1u);
@@ -94,7 +95,8 @@ TEST(AssimpImport, GltfMeshWithTransformAndEmissiveMaterial) {
 TEST(AssimpImport, UnreadableFilesNameTheFile) {
   const auto dir = test::scratchDir();
   const std::string junk = test::writeFile(dir / "junk.ply", "this is not a ply file\n");
-  for (const std::string& path : {junk, (dir / "missing.glb").string(), test::writeFile(dir / "x.qqq", "x")}) {
+  for (const std::string& path :
+       {junk, (dir / "missing.glb").string(), test::writeFile(dir / "x.qqq", "x")}) {
     try {
       loadScene(path);
       ADD_FAILURE() << path;
