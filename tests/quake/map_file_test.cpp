@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
+#include <optional>
+#include <random>
+
+#include "quake/map_to_scene.h"
 #include "scene/input_error.h"
 
 namespace gv {
@@ -96,6 +101,63 @@ TEST(MapFile, MalformedInputNamesTheLine) {
       errorLine("{\n{\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) tex [ 1 0 0 0 [ 0 1 0 0 ] 0 1 1\n}\n}\n"), 3u);
   // A top-level token that is not '{'.
   EXPECT_EQ(errorLine("\n\n}\n"), 3u);
+}
+
+TEST(MapFile, MutatedMapsParseOrFailWithAnInputError) {
+  // Seeded random damage to a valid map (a token dropped, replaced by junk, or the text cut
+  // short): the parser and the conversion either read it or throw InputError; nothing else
+  // escapes.
+  const std::string good =
+      "// Format: Valve\n{\n\"classname\" \"worldspawn\"\n{\n"
+      "( -80 256 16 ) ( -80 257 16 ) ( -80 256 17 ) a [ 0 -1 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "( -64 64 16 ) ( -64 64 17 ) ( -63 64 16 ) a [ 1 0 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "( -64 256 16 ) ( -63 256 16 ) ( -64 257 16 ) a [ -1 0 0 0 ] [ 0 -1 0 0 ] 0 1 1\n"
+      "( 64 384 96 ) ( 64 385 96 ) ( 65 384 96 ) a [ 1 0 0 0 ] [ 0 -1 0 0 ] 0 1 1\n"
+      "( 64 80 48 ) ( 65 80 48 ) ( 64 80 49 ) a [ -1 0 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "( 64 384 48 ) ( 64 384 49 ) ( 64 385 48 ) a [ 0 1 0 0 ] [ 0 0 -1 32 ] 0 1 1\n"
+      "}\n}\n{\n\"classname\" \"light\"\n\"origin\" \"0 0 64\"\n}\n";
+  std::vector<size_t> starts;  // token starts
+  for (size_t i = 0; i < good.size(); ++i)
+    if (!std::isspace(static_cast<unsigned char>(good[i])) &&
+        (i == 0 || std::isspace(static_cast<unsigned char>(good[i - 1]))))
+      starts.push_back(i);
+  const char* junk[] = {"{", "}", "(", ")", "[", "]", "\"", "nan", "1e999", "x", "//", "\"k\""};
+  std::mt19937 rng(7);
+  size_t errors = 0, parsed = 0, converted = 0;
+  for (int round = 0; round < 2000; ++round) {
+    std::string text = good;
+    const size_t t = starts[rng() % starts.size()];
+    size_t end = t;
+    while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
+    switch (rng() % 3) {
+      case 0:
+        text.erase(t, end - t);
+        break;
+      case 1:
+        text.replace(t, end - t, junk[rng() % std::size(junk)]);
+        break;
+      default:
+        text.resize(t);
+        break;
+    }
+    std::optional<MapFile> map;
+    try {
+      map = parseMapText("m.map", text);
+      ++parsed;
+    } catch (const InputError& e) {
+      ++errors;
+      EXPECT_GE(e.line(), 1u) << text;  // parse errors always have a line
+    }
+    if (!map) continue;
+    try {
+      mapToScene(*map, "m.map");
+      ++converted;
+    } catch (const InputError&) {  // no visible face left, a bad light origin ...
+    }
+  }
+  EXPECT_GT(errors, 500u);
+  EXPECT_GT(parsed, 50u);
+  EXPECT_GT(converted, 20u);
 }
 
 TEST(MapFile, MissingFileIsAnInputError) {

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <random>
 
 #include "quake/map_text.h"
 #include "scene/input_error.h"
@@ -146,6 +148,71 @@ TEST(MapToScene, OverlappingBrushesGiveTheUnionsSurface) {
       }
     }
   }
+}
+
+TEST(MapToScene, RandomBoxUnionsMatchAVoxelOracle) {
+  // Seeded random boxes on an integer grid (so they overlap, touch face to face and share
+  // coplanar faces often): the patches must tile exactly the boundary of the union, which the
+  // voxels of the grid give exactly: every voxel face between a full and an empty voxel, each
+  // patch in front of air and behind solid.
+  constexpr int kGrid = 8;
+  constexpr double kUnit = 16;
+  std::mt19937 rng(20261201);
+  size_t hiddenTotal = 0, cutTotal = 0;
+  for (int round = 0; round < 200; ++round) {
+    std::uniform_int_distribution<int> count(2, 8), coord(0, kGrid);
+    std::vector<std::pair<std::array<int, 3>, std::array<int, 3>>> boxes;
+    std::string brushes;
+    const int n = count(rng);
+    while (static_cast<int>(boxes.size()) < n) {
+      std::array<int, 3> lo{}, hi{};
+      for (int k = 0; k < 3; ++k) {
+        int a = coord(rng), b = coord(rng);
+        if (a == b) b = a < kGrid ? a + 1 : a - 1;
+        lo[k] = std::min(a, b);
+        hi[k] = std::max(a, b);
+      }
+      boxes.emplace_back(lo, hi);
+      brushes += boxBrush(Vec3{lo[0] * kUnit, lo[1] * kUnit, lo[2] * kUnit},
+                          Vec3{hi[0] * kUnit, hi[1] * kUnit, hi[2] * kUnit});
+    }
+    auto full = [&](int x, int y, int z) {
+      if (x < 0 || y < 0 || z < 0 || x >= kGrid || y >= kGrid || z >= kGrid) return false;
+      for (const auto& [lo, hi] : boxes)
+        if (x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2])
+          return true;
+      return false;
+    };
+    size_t boundaryFaces = 0;
+    for (int x = -1; x < kGrid; ++x)
+      for (int y = -1; y < kGrid; ++y)
+        for (int z = -1; z < kGrid; ++z) {
+          boundaryFaces += full(x, y, z) != full(x + 1, y, z);
+          boundaryFaces += full(x, y, z) != full(x, y + 1, z);
+          boundaryFaces += full(x, y, z) != full(x, y, z + 1);
+        }
+    MapImportStats st;
+    const Scene s = convert(world(brushes), &st);
+    hiddenTotal += st.hiddenFaces;
+    cutTotal += st.cutFaces;
+    EXPECT_NEAR(area(s), static_cast<double>(boundaryFaces) * kUnit * kUnit, 1e-6)
+        << "round " << round;
+    for (const Patch& p : s.patches) {
+      const Vec3 c = p.polygon.centroid(), nrm = p.polygon.normal();
+      auto voxel = [&](const Vec3& q) {
+        return full(static_cast<int>(std::floor(q.x / kUnit)),
+                    static_cast<int>(std::floor(q.y / kUnit)),
+                    static_cast<int>(std::floor(q.z / kUnit)));
+      };
+      // Centroids of the patches may fall on voxel edges; nudge inside the patch a little.
+      const Vec3 q = c + (p.polygon.vertices[0] - c) * 1e-3;
+      EXPECT_FALSE(voxel(q + nrm * 0.5)) << "round " << round << ": patch faces solid";
+      EXPECT_TRUE(voxel(q - nrm * 0.5)) << "round " << round << ": patch has air behind";
+    }
+  }
+  // The generator is not trivial: faces are hidden and cut.
+  EXPECT_GT(hiddenTotal, 200u);
+  EXPECT_GT(cutTotal, 200u);
 }
 
 TEST(MapToScene, NonSolidBrushesAreSkippedAndSkyIsBlack) {
