@@ -6,8 +6,11 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <random>
 
+#include "quake/brush_csg.h"
 #include "quake/map_text.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
@@ -213,6 +216,102 @@ TEST(MapToScene, RandomBoxUnionsMatchAVoxelOracle) {
   // The generator is not trivial: faces are hidden and cut.
   EXPECT_GT(hiddenTotal, 200u);
   EXPECT_GT(cutTotal, 200u);
+}
+
+/// A uniformly random point of a convex polygon (fan triangles chosen by area).
+Vec3 samplePolygon(const ConvexPolygon& poly, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(0, 1);
+  const std::vector<Vec3>& v = poly.vertices;
+  double total = 0;
+  std::vector<double> cumulative;
+  for (size_t i = 1; i + 1 < v.size(); ++i) {
+    total += length(cross(v[i] - v[0], v[i + 1] - v[0]));
+    cumulative.push_back(total);
+  }
+  const double pick = u(rng) * total;
+  size_t t = 0;
+  while (t + 1 < cumulative.size() && cumulative[t] < pick) ++t;
+  double a = u(rng), b = u(rng);
+  if (a + b > 1) {
+    a = 1 - a;
+    b = 1 - b;
+  }
+  return v[0] + (v[t + 1] - v[0]) * a + (v[t + 2] - v[0]) * b;
+}
+
+TEST(MapToScene, RandomSlantedBrushesAgainstPointSampling) {
+  // Seeded random convex brushes (8-14 planes tangent to a ball, slanted directions) that
+  // overlap: every sampled point of a patch lies outside all brushes, and every sampled point of
+  // a brush face outside all other brushes lies on some patch. Exact point tests, no statistics.
+  std::mt19937 rng(99);
+  std::normal_distribution<double> gauss(0, 1);
+  std::uniform_real_distribution<double> u(0, 1);
+  size_t checkedVisible = 0, checkedPatches = 0;
+  for (int round = 0; round < 40; ++round) {
+    std::string brushes;
+    const int count = 3 + round % 4;
+    for (int b = 0; b < count; ++b) {
+      const Vec3 c{u(rng) * 96, u(rng) * 96, u(rng) * 96};
+      const double r = 32 + 32 * u(rng);
+      brushes += "{\n";
+      // A randomly rotated box's six directions (so the brush is bounded) plus 2-8 random ones.
+      const Vec3 a = normalize(Vec3{gauss(rng), gauss(rng), gauss(rng)});
+      const Vec3 e = normalize(cross(a, Vec3{gauss(rng), gauss(rng), gauss(rng)}));
+      std::vector<Vec3> normals = {a, -a, e, -e, cross(a, e), -cross(a, e)};
+      const int extra = 2 + static_cast<int>(rng() % 7);
+      for (int k = 0; k < extra; ++k)
+        normals.push_back(normalize(Vec3{gauss(rng), gauss(rng), gauss(rng)}));
+      for (const Vec3& n : normals) {
+        const Vec3 t1 =
+            normalize(std::abs(n.x) < 0.9 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0}));
+        const Vec3 t2 = cross(n, t1);  // cross(t1, t2) = n
+        const Vec3 p1 = c + n * r, p0 = p1 + t1 * 64, p2 = p1 + t2 * 64;
+        char line[512];
+        std::snprintf(
+            line, sizeof line,
+            "( %.17g %.17g %.17g ) ( %.17g %.17g %.17g ) ( %.17g %.17g %.17g ) w 0 0 0 1 1\n", p0.x,
+            p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y, p2.z);
+        brushes += line;
+      }
+      brushes += "}\n";
+    }
+    const MapFile map = parseMapText("r.map", world(brushes));
+    const Scene s = mapToScene(map, "r.map");
+    const Tolerance tol = s.tolerance();
+    std::vector<BrushSolid> solids;
+    for (const MapBrush& b : map.entities[0].brushes) {
+      std::optional<BrushSolid> solid = brushSolid(b, tol);
+      ASSERT_TRUE(solid);  // bounded: it has a rotated box's six planes
+      solids.push_back(std::move(*solid));
+    }
+    const double margin = 1e-6 * tol.scale;  // points this close to another solid are skipped
+    auto depthIn = [&](const BrushSolid& b, const Vec3& p) {  // > 0 inside, < 0 outside
+      double d = INFINITY;
+      for (const Plane& h : b.shape.halfspaces) d = std::min(d, -h.distance(p));
+      return d;
+    };
+    for (const Patch& p : s.patches)
+      for (int k = 0; k < 20; ++k) {
+        const Vec3 q = samplePolygon(p.polygon, rng);
+        for (const BrushSolid& b : solids) EXPECT_LT(depthIn(b, q), margin) << "round " << round;
+        ++checkedPatches;
+      }
+    for (size_t i = 0; i < solids.size(); ++i)
+      for (const PolyhedronFace& f : solids[i].shape.faces)
+        for (int k = 0; k < 20; ++k) {
+          const Vec3 q = samplePolygon(f.polygon, rng);
+          bool outside = true;
+          for (size_t j = 0; j < solids.size() && outside; ++j)
+            if (j != i) outside = depthIn(solids[j], q) < -margin;
+          if (!outside) continue;
+          bool covered = false;
+          for (const Patch& p : s.patches) covered = covered || p.polygon.contains(q, tol);
+          EXPECT_TRUE(covered) << "round " << round << " brush " << i;
+          ++checkedVisible;
+        }
+  }
+  EXPECT_GT(checkedVisible, 2000u);
+  EXPECT_GT(checkedPatches, 2000u);
 }
 
 TEST(MapToScene, NonSolidBrushesAreSkippedAndSkyIsBlack) {
