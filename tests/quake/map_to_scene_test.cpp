@@ -478,5 +478,26 @@ TEST(MapToScene, LoadSceneAndTheCliTakeMapFiles) {
   EXPECT_NE(rb.output.find("bad.map:3"), std::string::npos) << rb.output;
 }
 
+TEST(MapToScene, VisAndVerifyRunOnAMap) {
+  // A closed room (six 16-unit walls) with a pillar and a light: `vis` reads the .map and its
+  // result passes the Embree ray check of `verify`.
+  const auto dir = test::scratchDir();
+  const std::vector<std::pair<Vec3, Vec3>> walls = {
+      {{-16, -16, -16}, {0, 272, 272}}, {{256, -16, -16}, {272, 272, 272}},
+      {{0, -16, -16}, {256, 0, 272}},   {{0, 256, -16}, {256, 272, 272}},
+      {{0, 0, -16}, {256, 256, 0}},     {{0, 0, 256}, {256, 256, 272}},
+      {{96, 0, 0}, {160, 128, 200}}};
+  std::string brushes;
+  for (const auto& [lo, hi] : walls) brushes += boxBrush(lo, hi);
+  const std::string path =
+      test::writeFile(dir / "room.map", world(brushes) + pointEntity("light", {128, 200, 200}));
+  const std::string out = (dir / "vis").string();
+  const test::CliResult vis = test::runCli("vis '" + path + "' -o '" + out + "'");
+  ASSERT_EQ(vis.exitCode, 0) << vis.output;
+  const test::CliResult verify = test::runCli("verify '" + out + "'");
+  EXPECT_EQ(verify.exitCode, 0) << verify.output;
+  EXPECT_NE(verify.output.find("OK"), std::string::npos) << verify.output;
+}
+
 }  // namespace
 }  // namespace gv
