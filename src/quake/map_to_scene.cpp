@@ -353,6 +353,7 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
              lines + (degenerateLines.size() > 5 ? ", ..." : ""));
   }
   note(st.skyFaces, "sky face(s) kept as black (absorbing) patches");
+  note(st.skipFaces, "skip face(s) not drawn (their brushes stay solid)");
   note(st.skippedLights, "light(s) skipped (light value <= 0, or inside solids)");
   if (statsOut) *statsOut = st;
   if (scene.patches.empty())

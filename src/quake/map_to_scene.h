@@ -19,7 +19,7 @@ struct MapImportOptions {
   double lightCubeSize = 8;
 };
 
-/// What the conversion kept and dropped; every count also appears in Scene::report.warnings.
+/// What the conversion kept and dropped (the skipped and dropped counts also as warnings).
 struct MapImportStats {
   size_t entities = 0;
   size_t brushesIn = 0;              ///< every brush of every entity
@@ -41,8 +41,12 @@ struct MapImportStats {
   size_t patches = 0;
 };
 
-/// Converts a parsed map (`path` names it in messages). Throws InputError (with the entity's
-/// line) on a malformed origin, light value or colour, and when nothing visible is left.
+/// Converts a parsed map (`path` names it in messages). Patch::sourceFace is the 0-based index of
+/// the patch's brush side counting every side of every brush in file order; light cubes have
+/// kNoSourceFace. ImportReport::facesIn counts the solids' boundary faces; the warnings count what
+/// was skipped or dropped (brush kinds, degenerate brushes, sky faces, skipped lights). Throws
+/// InputError (with the entity's line) on a malformed origin, light value or colour, and when
+/// nothing visible is left.
 Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOptions& options = {},
                  MapImportStats* stats = nullptr);
 
