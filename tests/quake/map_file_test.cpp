@@ -74,6 +74,19 @@ TEST(MapFile, ReadsValveAndStandardSidesWithCommentsAndQuake2Fields) {
   EXPECT_TRUE(map.entities[1].brushes.empty());
 }
 
+TEST(MapFile, BrushPrimitivesAreSkippedAndCountedAndCrLfIsFine) {
+  const std::string text =
+      "{\r\n\"classname\" \"worldspawn\"\r\n{\r\nbrushDef\r\n{\r\n"
+      "( 0 0 1 -64 ) ( ( 0.03 0 0 ) ( 0 0.03 0 ) ) tex 0 0 0\r\n}\r\n}\r\n"
+      "{\r\n( 0 0 0 ) ( 0 1 0 ) ( 1 0 0 ) tex 0 0 0 1 1\r\n}\r\n}\r\n";
+  const MapFile map = parseMapText("p.map", text);
+  EXPECT_EQ(map.skippedBrushPrimitives, 1u);
+  ASSERT_EQ(map.entities.size(), 1u);
+  ASSERT_EQ(map.entities[0].brushes.size(), 1u);
+  EXPECT_EQ(map.entities[0].brushes[0].sides[0].line, 10u);
+  EXPECT_EQ(*map.entities[0].value("classname"), "worldspawn");
+}
+
 TEST(MapFile, EmptyTextIsNoEntities) {
   EXPECT_TRUE(parseMapText("e.map", "// nothing\n\n").entities.empty());
 }
