@@ -19,7 +19,9 @@
 // - Materials: one per texture name; Kd from a hash of the lower-cased name (see textureColour).
 // - Lights: light and light_* entities → an outward cube of lightCubeSize at "origin", emitted
 //   power kQuakeLightPowerPerValue × "light" (default 300), coloured by "_color"; the cube's parts
-//   inside solids are removed like brush faces.
+//   inside solids are removed like brush faces. A light with "_surface" is a template (ericw-tools
+//   surface lights): no cube; every face with that texture emits the template's power per
+//   "_surface_spacing"² (default 128²) of its area.
 #include "quake/map_to_scene.h"
 
 #include <algorithm>
@@ -108,6 +110,52 @@ std::vector<double> numbers(const std::string& text) {
   return out;
 }
 
+/// A light / light_* entity's parameters. `surface` is the lower-cased "_surface" texture of a
+/// surface-light template (ericw-tools: the light is copied across every face with that texture
+/// instead of standing at its origin), empty for a point light.
+struct LightEntity {
+  Vec3 origin;
+  double value = kQuakeDefaultLight;
+  Rgb colour{1, 1, 1};
+  std::string surface;
+  double spacing = kQuakeSurfaceLightSpacing;
+};
+
+bool isLight(const MapEntity& e) {
+  const std::string c = lower(e.className());
+  return c == "light" || startsWith(c, "light_");
+}
+
+LightEntity parseLight(const MapEntity& e, const std::string& path) {
+  LightEntity l;
+  if (const std::string* surface = e.value("_surface")) l.surface = lower(*surface);
+  const std::string* origin = e.value("origin");
+  const std::vector<double> o = origin ? numbers(*origin) : std::vector<double>{};
+  if (o.size() == 3)
+    l.origin = {o[0], o[1], o[2]};
+  else if (l.surface.empty() || origin)
+    throw InputError(path, e.line, "light entity has no valid \"origin\" \"x y z\"");
+  if (const std::string* value = e.value("light")) {
+    const std::vector<double> v = numbers(*value);
+    if (v.empty()) throw InputError(path, e.line, "light entity has a non-numeric \"light\" value");
+    l.value = v.front();
+  }
+  if (const std::string* col = e.value("_color")) {
+    const std::vector<double> v = numbers(*col);
+    if (v.size() != 3 || *std::min_element(v.begin(), v.end()) < 0)
+      throw InputError(path, e.line, "light entity has a malformed \"_color\" (want \"r g b\")");
+    const double m = *std::max_element(v.begin(), v.end());
+    if (m > 0) l.colour = {v[0] / m, v[1] / m, v[2] / m};  // 0..1 or 0..255: only the hue counts
+  }
+  if (const std::string* spacing = e.value("_surface_spacing")) {
+    const std::vector<double> v = numbers(*spacing);
+    if (v.size() != 1 || v[0] <= 0)
+      throw InputError(path, e.line, "light entity has a malformed \"_surface_spacing\"");
+    l.spacing = v[0];
+  }
+  return l;
+}
+
 struct Solid {
   BrushSolid solid;
   const MapBrush* brush = nullptr;
@@ -155,6 +203,10 @@ std::vector<ConvexPolygon> cubeFaces(const Vec3& c, double half) {
 
 double quakeLightEmission(double light, double cubeSize) {
   return kQuakeLightPowerPerValue * light / (6 * cubeSize * cubeSize);
+}
+
+double quakeSurfaceLightEmission(double light, double spacing) {
+  return kQuakeLightPowerPerValue * light / (spacing * spacing);
 }
 
 Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOptions& options,
@@ -240,13 +292,26 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     return a.solid.box.lo.x < b.solid.box.lo.x;
   });
 
-  // 3. Visible parts of every face → patches, one material per texture.
+  // 3. Visible parts of every face → patches, one material per texture; surface-light textures
+  // emit (the template's power per spacing² of surface).
+  std::map<std::string, Rgb> surfaceEmission;
+  for (const MapEntity& e : map.entities) {
+    if (!isLight(e) || !e.value("_surface")) continue;
+    const LightEntity l = parseLight(e, path);
+    ++st.surfaceLights;
+    if (l.value <= 0) continue;
+    const double ke = quakeSurfaceLightEmission(l.value, l.spacing);
+    Rgb& em = surfaceEmission[l.surface];  // several templates for one texture add up
+    em = {em.r + ke * l.colour.r, em.g + ke * l.colour.g, em.b + ke * l.colour.b};
+  }
   std::map<std::string, uint32_t> materialOf;
   auto materialFor = [&](const std::string& texture) {
     const std::string key = lower(texture);
     auto it = materialOf.find(key);
     if (it != materialOf.end()) return it->second;
-    const uint32_t id = scene.addMaterial({key, textureColour(key), {}});
+    const auto em = surfaceEmission.find(key);
+    const uint32_t id = scene.addMaterial(
+        {key, textureColour(key), em == surfaceEmission.end() ? Rgb{} : em->second});
     materialOf.emplace(key, id);
     return id;
   };
@@ -270,50 +335,32 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
       if (parts.size() > 1 || parts.front().vertices != polygon.vertices) ++st.cutFaces;
       if (startsWith(t, "sky")) ++st.skyFaces;
       const uint32_t material = materialFor(texture);
+      if (scene.materials[material].isEmitter()) st.surfaceLightPatches += parts.size();
       for (ConvexPolygon& p : parts)
         scene.patches.push_back(
             {std::move(p), material, s.firstSourceFace + static_cast<uint32_t>(side)});
     }
   }
 
-  // 4. Lights.
+  // 4. Point lights.
   std::map<std::tuple<double, double, double>, uint32_t> lightMaterial;
   for (const MapEntity& e : map.entities) {
-    const std::string c = lower(e.className());
-    if (c != "light" && !startsWith(c, "light_")) continue;
-    const std::string* origin = e.value("origin");
-    const std::vector<double> o = origin ? numbers(*origin) : std::vector<double>{};
-    if (o.size() != 3)
-      throw InputError(path, e.line, "light entity has no valid \"origin\" \"x y z\"");
-    double value = kQuakeDefaultLight;
-    if (const std::string* l = e.value("light")) {
-      const std::vector<double> v = numbers(*l);
-      if (v.empty())
-        throw InputError(path, e.line, "light entity has a non-numeric \"light\" value");
-      value = v.front();
-    }
-    Rgb colour{1, 1, 1};
-    if (const std::string* col = e.value("_color")) {
-      const std::vector<double> v = numbers(*col);
-      if (v.size() != 3 || *std::min_element(v.begin(), v.end()) < 0)
-        throw InputError(path, e.line, "light entity has a malformed \"_color\" (want \"r g b\")");
-      const double m = *std::max_element(v.begin(), v.end());
-      if (m > 0) colour = {v[0] / m, v[1] / m, v[2] / m};  // 0..1 or 0..255: only the hue counts
-    }
-    if (value <= 0) {
+    if (!isLight(e) || e.value("_surface")) continue;
+    const LightEntity l = parseLight(e, path);
+    if (l.value <= 0) {
       ++st.skippedLights;
       continue;
     }
     std::vector<ConvexPolygon> faces;
-    for (const ConvexPolygon& f : cubeFaces({o[0], o[1], o[2]}, 0.5 * options.lightCubeSize))
+    for (const ConvexPolygon& f : cubeFaces(l.origin, 0.5 * options.lightCubeSize))
       for (ConvexPolygon& p : visibleOf(f, solids.size(), solids, tol))
         faces.push_back(std::move(p));
     if (faces.empty()) {
       ++st.skippedLights;
       continue;
     }
-    const double ke = quakeLightEmission(value, options.lightCubeSize);
-    const Rgb emission{ke * colour.r, ke * colour.g, ke * colour.b};
+    const double ke = quakeLightEmission(l.value, options.lightCubeSize);
+    const Rgb emission{ke * l.colour.r, ke * l.colour.g, ke * l.colour.b};
     auto key = std::make_tuple(emission.r, emission.g, emission.b);
     auto it = lightMaterial.find(key);
     if (it == lightMaterial.end())
@@ -355,6 +402,11 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
   note(st.skyFaces, "sky face(s) kept as black (absorbing) patches");
   note(st.skipFaces, "skip face(s) not drawn (their brushes stay solid)");
   note(st.skippedLights, "light(s) skipped (light value <= 0, or inside solids)");
+  if (st.surfaceLights > 0)
+    report.warnings.push_back(
+        path + ": " + std::to_string(st.surfaceLights) +
+        " surface-light template(s) (\"_surface\"): " + std::to_string(st.surfaceLightPatches) +
+        " patch(es) of their textures emit instead");
   if (statsOut) *statsOut = st;
   if (scene.patches.empty())
     throw InputError(path, 0,

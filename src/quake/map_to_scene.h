@@ -28,16 +28,18 @@ struct MapImportStats {
   size_t nonSolidEntityBrushes = 0;  ///< brushes of trigger_*, func_illusionary, info_* ...
   size_t moverBrushes = 0;           ///< brushes of movers (solid unless includeMovers is false)
   size_t clipBrushes = 0, hintBrushes = 0, originBrushes = 0, triggerBrushes = 0;
-  size_t liquidBrushes = 0;      ///< a *water / *slime / *lava / *tele face: not solid
-  size_t skipOnlyBrushes = 0;    ///< every face textured skip: not solid
-  size_t degenerateBrushes = 0;  ///< collinear side points, empty, unbounded or flat solids
-  size_t brushFaces = 0;         ///< boundary faces of the solids
-  size_t skipFaces = 0;          ///< faces textured skip: solid but never drawn
-  size_t hiddenFaces = 0;        ///< faces wholly inside or against other solids: no patch
-  size_t cutFaces = 0;           ///< faces partly hidden, cut into the pieces left visible
-  size_t skyFaces = 0;           ///< faces textured sky*: black (absorbing) patches
-  size_t lights = 0;             ///< light / light_* entities turned into emitters
-  size_t skippedLights = 0;      ///< light value <= 0, or the cube wholly inside solids
+  size_t liquidBrushes = 0;        ///< a *water / *slime / *lava / *tele face: not solid
+  size_t skipOnlyBrushes = 0;      ///< every face textured skip: not solid
+  size_t degenerateBrushes = 0;    ///< collinear side points, empty, unbounded or flat solids
+  size_t brushFaces = 0;           ///< boundary faces of the solids
+  size_t skipFaces = 0;            ///< faces textured skip: solid but never drawn
+  size_t hiddenFaces = 0;          ///< faces wholly inside or against other solids: no patch
+  size_t cutFaces = 0;             ///< faces partly hidden, cut into the pieces left visible
+  size_t skyFaces = 0;             ///< faces textured sky*: black (absorbing) patches
+  size_t lights = 0;               ///< light / light_* entities turned into emitters
+  size_t skippedLights = 0;        ///< light value <= 0, or the cube wholly inside solids
+  size_t surfaceLights = 0;        ///< light entities with "_surface": templates, no cube
+  size_t surfaceLightPatches = 0;  ///< patches whose texture a surface light makes emit
   size_t patches = 0;
 };
 
@@ -57,6 +59,14 @@ Scene importMap(const std::string& path, const MapImportOptions& options = {},
 /// The emitted radiosity (per channel, white light) of the cube made for a light entity of value
 /// `light`: total power kQuakeLightPowerPerValue × light spread over the cube's 6 faces.
 double quakeLightEmission(double light, double cubeSize);
+
+/// The emitted radiosity of faces textured like a surface-light template (a light entity with
+/// "_surface"): ericw-tools copies the template every `spacing` units across those faces, so the
+/// power of one light per spacing² of area.
+double quakeSurfaceLightEmission(double light, double spacing);
+
+/// ericw-tools' default "_surface_spacing" of surface lights, in map units.
+inline constexpr double kQuakeSurfaceLightSpacing = 128;
 
 /// Emitted power per unit of a light entity's "light" value, in (map unit)² × radiosity. Chosen
 /// so that the default light (300) gives irradiance 1 (a white surface as bright as Kd) at 150

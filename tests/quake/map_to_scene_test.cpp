@@ -402,6 +402,34 @@ TEST(MapToScene, LightEntityBecomesAnEmittingCube) {
   EXPECT_EQ(s.emitterCount(), 18u);
 }
 
+TEST(MapToScene, SurfaceLightTemplatesMakeTheirTextureEmit) {
+  // A light with "_surface" (ericw-tools) is no point light: every face textured like it emits
+  // the template's power per spacing² of area. Textures are matched ignoring case.
+  MapImportStats st;
+  const std::string text =
+      world(boxBrush({0, 0, 0}, {64, 64, 64}) +
+            boxBrush({200, 0, 0}, {264, 64, 64}, "BrownLight")) +
+      pointEntity("light", {0, 0, 300}, "\"_surface\" \"brownlight\"\n\"light\" \"200\"\n") +
+      pointEntity("light", {0, 0, 300},
+                  "\"_surface\" \"wall\"\n\"light\" \"100\"\n\"_surface_spacing\" \"64\"\n"
+                  "\"_color\" \"0 0 1\"\n");
+  const Scene s = convert(text, &st);
+  EXPECT_EQ(st.surfaceLights, 2u);
+  EXPECT_EQ(st.lights, 0u);
+  EXPECT_EQ(st.surfaceLightPatches, 12u);
+  EXPECT_EQ(s.patches.size(), 12u);  // no cubes
+  for (const Patch& p : s.patches) {
+    const Rgb e = s.materials[p.material].emission;
+    if (p.polygon.centroid().x > 100) {
+      EXPECT_NEAR(e.r, kQuakeLightPowerPerValue * 200 / (128.0 * 128), 1e-9);
+      EXPECT_EQ(e.r, e.b);
+    } else {
+      EXPECT_EQ(e.r, 0);
+      EXPECT_NEAR(e.b, kQuakeLightPowerPerValue * 100 / (64.0 * 64), 1e-9);
+    }
+  }
+}
+
 TEST(MapToScene, LightCubeInsideAWallKeepsOnlyItsOutsidePart) {
   // The cube [-4, 4]^3 around the origin against a wall filling x <= 0: the -x face and the
   // halves of four faces inside the wall go.
