@@ -21,7 +21,8 @@
 //   power kQuakeLightPowerPerValue × "light" (default 300), coloured by "_color"; the cube's parts
 //   inside solids are removed like brush faces. A light with "_surface" is a template (ericw-tools
 //   surface lights): no cube; every face with that texture emits the template's power per
-//   "_surface_spacing"² (default 128²) of its area.
+//   "_surface_spacing"² (default 128²) of its area. Switchable lights that start off (a
+//   targetname and spawnflags 1) are left dark: the solution is the level as it starts.
 #include "quake/map_to_scene.h"
 
 #include <algorithm>
@@ -119,6 +120,8 @@ struct LightEntity {
   Rgb colour{1, 1, 1};
   std::string surface;
   double spacing = kQuakeSurfaceLightSpacing;
+  /// A switchable light (it has a targetname) with spawnflag 1, START_OFF: dark until triggered.
+  bool startsOff = false;
 };
 
 bool isLight(const MapEntity& e) {
@@ -146,6 +149,11 @@ LightEntity parseLight(const MapEntity& e, const std::string& path) {
       throw InputError(path, e.line, "light entity has a malformed \"_color\" (want \"r g b\")");
     const double m = *std::max_element(v.begin(), v.end());
     if (m > 0) l.colour = {v[0] / m, v[1] / m, v[2] / m};  // 0..1 or 0..255: only the hue counts
+  }
+  if (const std::string* flags = e.value("spawnflags"); flags && e.value("targetname")) {
+    const std::vector<double> v = numbers(*flags);
+    if (v.size() != 1) throw InputError(path, e.line, "entity has a malformed \"spawnflags\"");
+    l.startsOff = (static_cast<long long>(v[0]) & 1) != 0;
   }
   if (const std::string* spacing = e.value("_surface_spacing")) {
     const std::vector<double> v = numbers(*spacing);
@@ -299,7 +307,8 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     if (!isLight(e) || !e.value("_surface")) continue;
     const LightEntity l = parseLight(e, path);
     ++st.surfaceLights;
-    if (l.value <= 0) continue;
+    if (l.startsOff) ++st.startOffLights;
+    if (l.value <= 0 || l.startsOff) continue;
     const double ke = quakeSurfaceLightEmission(l.value, l.spacing);
     Rgb& em = surfaceEmission[l.surface];  // several templates for one texture add up
     em = {em.r + ke * l.colour.r, em.g + ke * l.colour.g, em.b + ke * l.colour.b};
@@ -347,6 +356,10 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
   for (const MapEntity& e : map.entities) {
     if (!isLight(e) || e.value("_surface")) continue;
     const LightEntity l = parseLight(e, path);
+    if (l.startsOff) {
+      ++st.startOffLights;
+      continue;
+    }
     if (l.value <= 0) {
       ++st.skippedLights;
       continue;
@@ -402,6 +415,7 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
   note(st.skyFaces, "sky face(s) kept as black (absorbing) patches");
   note(st.skipFaces, "skip face(s) not drawn (their brushes stay solid)");
   note(st.skippedLights, "light(s) skipped (light value <= 0, or inside solids)");
+  note(st.startOffLights, "switchable light(s) that start off (spawnflags 1) left dark");
   if (st.surfaceLights > 0)
     report.warnings.push_back(
         path + ": " + std::to_string(st.surfaceLights) +

@@ -38,6 +38,7 @@ struct MapImportStats {
   size_t skyFaces = 0;             ///< faces textured sky*: black (absorbing) patches
   size_t lights = 0;               ///< light / light_* entities turned into emitters
   size_t skippedLights = 0;        ///< light value <= 0, or the cube wholly inside solids
+  size_t startOffLights = 0;       ///< switchable lights with START_OFF: left dark
   size_t surfaceLights = 0;        ///< light entities with "_surface": templates, no cube
   size_t surfaceLightPatches = 0;  ///< patches whose texture a surface light makes emit
   size_t patches = 0;

@@ -373,33 +373,39 @@ TEST(MapToScene, SkipFacesAreNotDrawnButStillHide) {
 
 TEST(MapToScene, LightEntityBecomesAnEmittingCube) {
   MapImportStats st;
-  const std::string text = world(boxBrush({-512, -512, -64}, {512, 512, -32})) +
-                           pointEntity("light", {0, 0, 64}, "\"light\" \"200\"\n") +
-                           pointEntity("light_torch_small_walltorch", {100, 0, 64}) +
-                           pointEntity("light", {-100, 0, 64}, "\"_color\" \"255 128 0\"\n") +
-                           pointEntity("monster_soldier_light", {0, 100, 64}) +
-                           pointEntity("light", {0, -100, 64}, "\"light\" \"-50\"\n");
+  const std::string text =
+      world(boxBrush({-512, -512, -64}, {512, 512, -32})) +
+      pointEntity("light", {0, 0, 64}, "\"light\" \"200\"\n") +
+      pointEntity("light_torch_small_walltorch", {100, 0, 64}) +
+      pointEntity("light", {-100, 0, 64}, "\"_color\" \"255 128 0\"\n") +
+      pointEntity("monster_soldier_light", {0, 100, 64}) +
+      pointEntity("light", {0, -100, 64}, "\"light\" \"-50\"\n") +
+      pointEntity("light", {0, -200, 64}, "\"targetname\" \"t1\"\n\"spawnflags\" \"1\"\n") +
+      pointEntity("light", {0, -300, 64}, "\"spawnflags\" \"1\"\n");
   const Scene s = convert(text, &st);
-  EXPECT_EQ(st.lights, 3u);
+  EXPECT_EQ(st.lights, 4u);  // spawnflags 1 without a targetname is not a switchable light
   EXPECT_EQ(st.skippedLights, 1u);
+  EXPECT_EQ(st.startOffLights, 1u);
   // Emitted power per light: Ke × area over its patches, = kQuakeLightPowerPerValue × light.
-  std::map<int, double> power;  // keyed by the cube's x
+  std::map<int, double> power;  // keyed by the cube's x + 10 y, in hundreds of units
   std::map<int, Rgb> colour;
   for (const Patch& p : s.patches) {
     const Material& m = s.materials[p.material];
     if (!m.isEmitter()) continue;
-    const int x = static_cast<int>(std::lround(p.polygon.centroid().x / 100));
+    const int x = static_cast<int>(std::lround(p.polygon.centroid().x / 100) +
+                                   10 * std::lround(p.polygon.centroid().y / 100));
     power[x] += m.emission.r * p.polygon.area();
     colour[x] = m.emission;
     EXPECT_NEAR(p.polygon.centroid().z, 64, 4 + 1e-9);
   }
-  ASSERT_EQ(power.size(), 3u);
+  ASSERT_EQ(power.size(), 4u);
   EXPECT_NEAR(power[0], kQuakeLightPowerPerValue * 200, 1e-6);
   EXPECT_NEAR(power[1], kQuakeLightPowerPerValue * kQuakeDefaultLight, 1e-6);
   EXPECT_NEAR(power[-1], kQuakeLightPowerPerValue * kQuakeDefaultLight, 1e-6);
   EXPECT_NEAR(colour[-1].g / colour[-1].r, 128.0 / 255.0, 1e-12);
   EXPECT_EQ(colour[-1].b, 0);
-  EXPECT_EQ(s.emitterCount(), 18u);
+  EXPECT_NEAR(power[-30], kQuakeLightPowerPerValue * kQuakeDefaultLight, 1e-6);
+  EXPECT_EQ(s.emitterCount(), 24u);
 }
 
 TEST(MapToScene, SurfaceLightTemplatesMakeTheirTextureEmit) {
