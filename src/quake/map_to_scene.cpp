@@ -225,7 +225,7 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
   for (const std::string& w : map.warnings) report.warnings.push_back(w);
   st.entities = map.entities.size();
 
-  // 1. Which brushes are solid; the tolerance from all their side points.
+  // 1. Which brushes are solid.
   std::vector<std::pair<const MapBrush*, uint32_t>> chosen;  // brush, first global side index
   std::vector<bool> chosenSky, chosenHides;
   Aabb pointBox;
@@ -276,7 +276,13 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
         for (const Vec3& p : s.points) pointBox.add(p);
     }
   }
-  const Tolerance tol = Tolerance::forBounds(pointBox);
+  // The side points bound the level only roughly (an editor may put them anywhere on the
+  // plane): the tolerance comes from the solids themselves, built once unsnapped to measure them.
+  Aabb solidBox;
+  const Tolerance rough = Tolerance::forBounds(pointBox);
+  for (const auto& [brush, first] : chosen)
+    if (std::optional<BrushSolid> s = brushSolid(*brush, rough)) solidBox.add(s->box);
+  const Tolerance tol = Tolerance::forBounds(solidBox.empty() ? pointBox : solidBox);
 
   // 2. Solids (file order = priority for coincident faces), then sorted by x for the sweep.
   std::vector<Solid> solids;
