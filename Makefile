@@ -3,7 +3,8 @@
 # Other targets: build, build-asan, test-release, test-asan, bench, format, clean.
 
 PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libtinyobjloader-dev libcli11-dev \
-            nlohmann-json3-dev libfmt-dev libcgal-dev libembree-dev libtbb-dev libpng-dev
+            nlohmann-json3-dev libfmt-dev libcgal-dev libembree-dev libtbb-dev libpng-dev \
+            libassimp-dev
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD := build
 BUILD_ASAN := build-asan

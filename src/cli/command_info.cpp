@@ -50,7 +50,7 @@ Action addInfoCommand(CLI::App& app) {
                                          "faces, emitters, bounding box, total area");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("scene", *path, "Scene file (.obj with .mtl)")->required();
+  cmd->add_option("scene", *path, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
   cmd->add_flag("--json", *json, "Print JSON instead of text");
   return [path, json] {
     const Scene scene = loadScene(*path);

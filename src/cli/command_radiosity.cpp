@@ -32,7 +32,7 @@ Action addRadiosityCommand(CLI::App& app) {
     bool noPictures = false, flat = false;
   };
   auto s = std::make_shared<State>();
-  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl: Kd reflectance, Ke emission)")
+  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl: Kd reflectance, Ke emission; or a Quake .map, or a mesh Assimp reads)")
       ->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--visibility", s->visibility,

@@ -29,7 +29,7 @@ Action addVisCommand(CLI::App& app) {
     bool json = false;
   };
   auto s = std::make_shared<State>();
-  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl)")->required();
+  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--threads", s->propagation.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));

@@ -7,26 +7,16 @@
 #include <fstream>
 #include <sstream>
 
+#include "quake/map_to_scene.h"
 #include "scene/face_to_patches.h"
 #include "scene/input_error.h"
 #include "scene/obj_precheck.h"
+#include "scene/read_file.h"
 #include "scene/scene_io.h"
 
 namespace gv {
 namespace fs = std::filesystem;
 namespace {
-
-std::string readWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw InputError(path, 0, "file not found");
-  if (fs::is_directory(path, ec)) throw InputError(path, 0, "is a directory, not a file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot be opened for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw InputError(path, 0, "read error");
-  return ss.str();
-}
 
 /// Checks each referenced MTL library and returns their concatenated text. Missing → warning
 /// (grey default); present but unreadable or malformed → InputError.
@@ -147,7 +137,11 @@ Scene loadScene(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".obj") return importObj(path);
-  throw InputError(path, 0, "unsupported scene format '" + ext + "' (supported: .obj)");
+  if (ext == ".map") return importMap(path);
+  if (!ext.empty() && assimpReadsExtension(ext)) return importWithAssimp(path);
+  throw InputError(path, 0, "unsupported scene format '" + ext +
+                                "' (supported: .obj, .map, and the mesh formats Assimp reads: "
+                                ".ply, .gltf, .glb, ...)");
 }
 
 }  // namespace gv
