@@ -18,7 +18,11 @@
 #include <chrono>
 #include <deque>
 #include <mutex>
-#include <thread>
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "visibility/hull_overlap.h"
 #include "visibility/might_see.h"
@@ -280,18 +284,21 @@ class CellSearch {
   CellSearchResult result_;
 };
 
-/// Runs fn(worker, index) for index in [0, n) on `threads` workers; each index exactly once.
+/// Runs fn(worker, index) for index in [0, n) on at most `threads` oneTBB workers, each with its
+/// own state from makeWorker(); each index exactly once. Results land per index, so the output
+/// does not depend on the schedule.
 template <typename MakeWorker, typename Fn>
 void parallelFor(size_t n, int threads, MakeWorker makeWorker, Fn fn) {
-  std::atomic<size_t> next{0};
-  auto body = [&] {
-    auto worker = makeWorker();
-    for (size_t i = next++; i < n; i = next++) fn(worker, i);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(body);
-  body();
-  for (std::thread& t : pool) t.join();
+  using Worker = decltype(makeWorker());
+  tbb::enumerable_thread_specific<Worker> workers(makeWorker);
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                        Worker& w = workers.local();
+                        for (size_t i = r.begin(); i < r.end(); ++i) fn(w, i);
+                      });
+  });
 }
 
 }  // namespace
@@ -318,7 +325,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   const size_t n = scene.patches.size();
   const int threads = options.threads > 0
                           ? options.threads
-                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+                          : tbb::this_task_arena::max_concurrency();
   VisibilityGraph graph;
   VisibilityStats& st = graph.stats;
   st.patches = n;

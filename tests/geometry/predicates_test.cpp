@@ -117,5 +117,28 @@ TEST(PredicatesOrient2d, ExactOnNearlyCollinearPoints) {
   EXPECT_GT(naiveWrong, 0);
 }
 
+// The coordinate-comparison shortcut (axis planes, axis-parallel line pairs) must agree with the
+// exact rational sign: quadruples built with shared coordinates, many exactly coplanar, many not.
+TEST(PredicatesOrient3d, AxisDegenerateQuadruplesMatchExactRationals) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-5, 5);
+  int zeros = 0, nonZeros = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Vec3 p[4];
+    for (Vec3& q : p) q = {u(rng), u(rng), u(rng)};
+    // Copy coordinates between random points so that axis-parallel pairs and planes appear.
+    for (int k = 0; k < 7; ++k) {
+      const int from = static_cast<int>(rng() % 4), to = static_cast<int>(rng() % 4);
+      const int axis = static_cast<int>(rng() % 3);
+      p[to][axis] = p[from][axis];
+    }
+    const int exact = orient3dRational(p[0], p[1], p[2], p[3]);
+    ASSERT_EQ(orient3d(p[0], p[1], p[2], p[3]), exact) << "trial " << trial;
+    (exact == 0 ? zeros : nonZeros)++;
+  }
+  EXPECT_GT(zeros, 1000);
+  EXPECT_GT(nonZeros, 1000);
+}
+
 }  // namespace
 }  // namespace gv
