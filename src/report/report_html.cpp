@@ -32,10 +32,13 @@ const json* number(const std::optional<json>& doc, const char* pointer) {
 }
 
 std::string withCommas(double value) {
-  const bool negative = value < 0;
-  std::string digits = fmt::format("{:.0f}", std::abs(value));
-  for (int i = int(digits.size()) - 3; i > 0; i -= 3) digits.insert(size_t(i), ",");
-  return negative ? "-" + digits : digits;
+  const std::string digits = fmt::format("{:.0f}", std::abs(value));
+  std::string out = value <= -0.5 ? "-" : "";
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
 }
 
 /// A count with thousands separators, or "—".
@@ -310,7 +313,7 @@ constexpr const char* kStyle = R"(
 body { font: 14px/1.45 system-ui, sans-serif; margin: 0 auto; max-width: 1100px; padding: 16px; color: #222; }
 h1 { font-size: 22px; } h2 { font-size: 18px; margin-top: 28px; border-bottom: 1px solid #ccc; }
 table { border-collapse: collapse; margin: 8px 0; }
-th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: right; }
+th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: right; white-space: nowrap; }
 thead th { background: #f0f0f0; text-align: center; } tbody th { text-align: left; font-weight: normal; }
 .note, .missing { color: #666; } .missing { font-style: italic; }
 .pictures { display: flex; flex-wrap: wrap; gap: 12px; }

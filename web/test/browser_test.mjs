@@ -52,10 +52,10 @@ function makeRun(cli, dir) {
   rmSync(dir, { recursive: true, force: true });
   mkdirSync(dir, { recursive: true });
   const scene = join(dir, 'office.obj');
-  run(cli, ['gen', 'office', '--rows', '1', '--columns', '3', '-o', scene]);
+  run(cli, ['gen', 'office', '--rows', '1', '--columns', '2', '-o', scene]);
   run(cli, ['cells', scene, '-o', join(dir, 'cells')]);
   run(cli, ['vis', scene, '-o', join(dir, 'vis'), '--min-coverage', '0.3']);
-  run(cli, ['radiosity', scene, '-o', join(dir, 'radiosity'), '--quiet', '--max-refinements', '2']);
+  run(cli, ['radiosity', scene, '-o', join(dir, 'radiosity'), '--quiet', '--max-refinements', '1', '--rays', '4']);
   run(cli, ['view', dir]);
   run(cli, ['report', dir]);
 }
