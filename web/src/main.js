@@ -162,6 +162,10 @@ function start() {
     partnerCount(p) {
       return pairs.byPatch[p].length;
     },
+    /** The patches patch p interacts with. */
+    partnersOf(p) {
+      return pairs.byPatch[p].map((k) => pairs.partnerOf(k, p));
+    },
     /** A client pixel where patch p is the patch drawn (tries points across it), or null. */
     screenPointOfPatch(p) {
       const rect = renderer.domElement.getBoundingClientRect();

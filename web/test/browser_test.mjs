@@ -6,7 +6,7 @@
 //
 // Usage: node browser_test.mjs --cli build/globalvis --work DIR [--chromium /usr/bin/chromium]
 import { execFileSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
@@ -142,6 +142,26 @@ async function testViewer(context, runDir, work, errors) {
   const changed = changedFraction(before, selected);
   check(changed >= MIN_CHANGED_FRACTION, 'the selection changed what is drawn', `${(100 * changed).toFixed(2)} % of pixels`);
 
+  // Shift-click a partner in the scene: that interaction is selected.
+  const partner = await page.evaluate((p) => {
+    const api = window.viewerApi;
+    for (const q of api.partnersOf(p)) {
+      const point = api.screenPointOfPatch(q);
+      if (point) return { q, ...point };
+    }
+    return null;
+  }, target.p);
+  if (check(partner !== null, 'a partner of the selected patch is on screen')) {
+    await page.keyboard.down('Shift');
+    await page.mouse.click(partner.x, partner.y);
+    await page.keyboard.up('Shift');
+    await page.waitForFunction(() => window.viewerState.selectedPair !== null, null, { timeout: TIMEOUT_MS });
+    const pair = await page.evaluate(() => window.viewerState.selectedPair);
+    const expected = [Math.min(target.p, partner.q), Math.max(target.p, partner.q)];
+    check(pair[0] === expected[0] && pair[1] === expected[1], 'shift-clicking a partner selects the interaction', `pair ${pair}`);
+    await page.evaluate((p) => window.viewerApi.selectPatch(p), target.p);
+  }
+
   // Pick the patch's interaction with the most blockers from the list: tube and blockers.
   const partners = await page.locator('#gv-partners li').count();
   if (check(partners > 0, 'the selected patch lists its interactions', `${partners}`)) {
@@ -186,7 +206,10 @@ async function testReport(context, runDir, work, errors) {
   }
   const bars = await page.locator('svg.chart rect.success').count();
   check(bars > 0, 'report draws the Fig. 13 chart', `${bars} length groups`);
-  const pngs = readdirSync(join(runDir, 'radiosity')).filter((f) => f.endsWith('.png'));
+  const pngs = [
+    ...readdirSync(join(runDir, 'radiosity')).filter((f) => f.endsWith('.png')).map((f) => `radiosity/${f}`),
+    ...readdirSync(runDir).filter((f) => f.endsWith('.png')),
+  ];
   const images = await page.evaluate(() => [...document.images].map((i) => ({ ok: i.complete && i.naturalWidth > 0, alt: i.alt })));
   check(images.length === pngs.length && images.every((i) => i.ok), 'report shows every picture of the run', `${images.filter((i) => i.ok).length} shown of ${pngs.length} PNG files: ${pngs.join(', ') || 'none'}`);
   const frame = page.frames().find((f) => f.url().endsWith('viewer.html'));
@@ -237,6 +260,10 @@ async function main() {
   });
   try {
     await testViewer(context, runDir, work, errors);
+    // The report embeds every PNG of the run; make sure there is one (besides whatever the
+    // radiosity stage draws) by adding the viewer's screenshot, then write the report again.
+    copyFileSync(join(work, 'viewer-1-scene.png'), join(runDir, 'viewer_screenshot.png'));
+    run(resolve(args.cli), ['report', runDir]);
     await testReport(context, runDir, work, errors);
   } finally {
     await context.close();
