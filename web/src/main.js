@@ -166,7 +166,7 @@ function start() {
     partnersOf(p) {
       return pairs.byPatch[p].map((k) => pairs.partnerOf(k, p));
     },
-    /** A client pixel where patch p is the patch drawn (tries points across it), or null. */
+    /** A client pixel where a click picks patch p (tries points across it), or null. */
     screenPointOfPatch(p) {
       const rect = renderer.domElement.getBoundingClientRect();
       const poly = layers.patches[p];
@@ -178,6 +178,8 @@ function start() {
         if (Math.abs(v.x) > 0.98 || Math.abs(v.y) > 0.98 || v.z > 1) continue;
         const x = rect.left + ((v.x + 1) / 2) * rect.width;
         const y = rect.top + ((1 - v.y) / 2) * rect.height;
+        // The pixel must reach the canvas (not the panel above it) and show patch p.
+        if (document.elementFromPoint(x, y) !== renderer.domElement) continue;
         if (api.patchAt(x, y) === p) return { x, y };
       }
       return null;

@@ -19,6 +19,7 @@ body { font: 13px/1.35 system-ui, sans-serif; color: #e8e8e8; }
 .gv-panel li { padding: 1px 4px; cursor: pointer; border-radius: 3px; }
 .gv-panel li:hover { background: #333a44; }
 .gv-panel li.gv-current { background: #5a4a10; }
+.gv-sources { white-space: pre-wrap; word-break: break-all; font-size: 11px; }
 .gv-swatch { display: inline-block; width: 10px; height: 10px; margin-right: 4px; border: 1px solid #000; }
 .gv-error { position: absolute; bottom: 0; left: 0; right: 0; color: #f66; background: #200; margin: 0; padding: 8px; }
 button { font: inherit; }
@@ -57,6 +58,12 @@ export function createPanel(doc, data, state, pairs, api) {
         (data.portals ? `, ${data.portals.cells.length / 2} portals` : ''),
     }),
   );
+
+  const sources = Object.entries(data.sources || {}).map(([k, v]) => `${k}: ${v}`);
+  panel.appendChild(el(doc, 'details', {}, [
+    el(doc, 'summary', { class: 'gv-muted', text: 'files' }),
+    el(doc, 'div', { class: 'gv-muted gv-sources', text: [...sources, ...(data.notes || [])].join('\n') }),
+  ]));
 
   panel.appendChild(el(doc, 'h2', { text: 'Show' }));
   const checkbox = (name, label, color, enabled) => {

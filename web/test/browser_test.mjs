@@ -196,6 +196,23 @@ async function testViewer(context, runDir, work, errors) {
   await page.close();
 }
 
+/** A page of the files directly in a directory (vis/ alone): material colours, no cells. */
+async function testMaterialOnly(context, cli, runDir, work, errors) {
+  const pageFile = join(work, 'viewer-vis-only.html');
+  run(cli, ['view', join(runDir, 'vis'), '-o', pageFile]);
+  const page = await context.newPage();
+  watch(page, 'viewer (vis only)', errors);
+  await page.goto(pathToFileURL(pageFile).href, { timeout: TIMEOUT_MS });
+  await page.waitForFunction(() => window.viewerState && window.viewerState.ready, null, { timeout: TIMEOUT_MS });
+  const state = await page.evaluate(() => ({ ...window.viewerState }));
+  check(state.shading === 'material' && state.pairCount > 0, 'a run without radiosity is shaded by material colour', `${state.pairCount} pairs`);
+  const cellsDisabled = await page.isDisabled('#gv-toggle-cells');
+  check(cellsDisabled, 'without cells.obj the cells toggle is disabled');
+  const colors = distinctColors(await screenshot(page, join(work, 'viewer-6-material.png')));
+  check(colors >= MIN_DISTINCT_COLORS / 4, 'material-shaded screenshot is not blank', `${colors} distinct colours`);
+  await page.close();
+}
+
 async function testReport(context, runDir, work, errors) {
   const page = await context.newPage();
   watch(page, 'report', errors);
@@ -260,6 +277,7 @@ async function main() {
   });
   try {
     await testViewer(context, runDir, work, errors);
+    await testMaterialOnly(context, resolve(args.cli), runDir, work, errors);
     // The report embeds every PNG of the run; make sure there is one (besides whatever the
     // radiosity stage draws) by adding the viewer's screenshot, then write the report again.
     copyFileSync(join(work, 'viewer-1-scene.png'), join(runDir, 'viewer_screenshot.png'));
