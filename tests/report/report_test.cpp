@@ -23,10 +23,14 @@ size_t countOf(const std::string& text, const std::string& what) {
   return n;
 }
 
+/// n with thousands separators, as the report prints counts (written independently here).
 std::string withCommas(size_t n) {
-  std::string s = std::to_string(n);
-  for (int i = int(s.size()) - 3; i > 0; i -= 3) s.insert(size_t(i), ",");
-  return s;
+  std::string reversed;
+  for (size_t digits = 0; n > 0 || digits == 0; n /= 10, ++digits) {
+    if (digits > 0 && digits % 3 == 0) reversed += ',';
+    reversed += char('0' + n % 10);
+  }
+  return {reversed.rbegin(), reversed.rend()};
 }
 
 /// A tiny valid PNG (1x1, one red pixel), written out byte by byte.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -26,12 +27,25 @@ inline std::string readText(const std::filesystem::path& path) {
   return text.str();
 }
 
+/// Removes a directory when the test process ends.
+struct RemoveAtExit {
+  std::filesystem::path dir;
+  ~RemoveAtExit() {
+    std::error_code ec;
+    if (!dir.empty()) std::filesystem::remove_all(dir, ec);
+  }
+};
+
 /// The run directory (DIR/office.obj, DIR/cells, DIR/vis, DIR/radiosity); empty on failure, with
-/// the failing command's output in `error`.
+/// the failing command's output in `error`. One per process (ctest runs tests in parallel
+/// processes), removed when the process ends.
 inline const std::filesystem::path& smallRun(std::string* error = nullptr) {
   static std::string failure;
+  static RemoveAtExit cleanup;
   static const std::filesystem::path dir = [] {
-    const auto d = std::filesystem::temp_directory_path() / "globalvis-tests" / "report-small-run";
+    const auto d = std::filesystem::temp_directory_path() / "globalvis-tests" /
+                   ("report-small-run-" + std::to_string(getpid()));
+    cleanup.dir = d;
     std::filesystem::remove_all(d);
     std::filesystem::create_directories(d);
     const std::string obj = quotedPath(d / "office.obj");
