@@ -147,6 +147,16 @@ TEST(ReportCli, ReportOfARunHasItsTablesAndFigures) {
   EXPECT_NE(page.find("data:image/png;base64," + base64Encode(tinyPng())), std::string::npos);
   EXPECT_NE(page.find("radiosity/render.png"), std::string::npos);
   EXPECT_EQ(page.find("src=\"viewer.html\""), std::string::npos);  // no viewer written yet
+
+#ifdef GV_VIEWER_BUNDLE
+  // --viewer writes the viewer first and frames it; -o elsewhere keeps the link relative.
+  const auto withViewer = test::runCli("report --viewer " + test::quotedPath(dir) + " -o " +
+                                       test::quotedPath(dir / "cells" / "r.html"));
+  ASSERT_EQ(withViewer.exitCode, 0) << withViewer.output;
+  EXPECT_TRUE(fs::is_regular_file(dir / "viewer.html"));
+  EXPECT_NE(test::readText(dir / "cells" / "r.html").find("src=\"../viewer.html\""),
+            std::string::npos);
+#endif
 }
 
 TEST(ReportCli, EmptyDirectoryIsAnInputError) {
