@@ -34,7 +34,7 @@ step "visibility and blocker lists (paper §4-§5, §7.2-7.3)"
 "$gv" vis "$out/office.obj" -o "$out/vis" --min-coverage 0.3
 
 step "independent check of the visibility by ray casting"
-"$gv" verify "$out/vis" --rays 100000 --segments 20000
+"$gv" verify "$out/vis" --rays 100000 --segments 20000 | tee "$out/vis/verify.txt"
 
 step "hierarchical radiosity (rays visibility, HSA91)"
 "$gv" radiosity "$out/office.obj" -o "$out/radiosity" --quiet

@@ -151,6 +151,11 @@ std::string visibilitySection(const ReportInputs& in) {
               fixed(number(v, "/visibility/seconds/total"), 2) +
                   (threads ? fmt::format(" (wall, {} threads)", threads->get<int>()) : "")}});
 
+  if (!in.verify.empty())
+    out +=
+        "<p>Independent check by ray casting (<code>globalvis verify</code>, "
+        "<code>vis/verify.txt</code>):</p>\n<pre id=\"verify\">" +
+        htmlEscape(in.verify) + "</pre>\n";
   out += "<h3 id=\"fig13\">Fig. 13: stabbing successes and failures, by sequence length</h3>\n";
   std::vector<uint64_t> successes, failures;
   if (v->contains("visibility") && (*v)["visibility"].contains("fig13_successes_by_length")) {
@@ -315,6 +320,7 @@ h1 { font-size: 22px; } h2 { font-size: 18px; margin-top: 28px; border-bottom: 1
 table { border-collapse: collapse; margin: 8px 0; }
 th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: right; white-space: nowrap; }
 thead th { background: #f0f0f0; text-align: center; } tbody th { text-align: left; font-weight: normal; }
+pre { background: #f6f6f6; padding: 6px 8px; border: 1px solid #ddd; white-space: pre-wrap; }
 .note, .missing { color: #666; } .missing { font-style: italic; }
 .pictures { display: flex; flex-wrap: wrap; gap: 12px; }
 figure { margin: 0; max-width: 340px; } figure img { width: 100%; border: 1px solid #ccc; }
@@ -367,6 +373,12 @@ ReportInputs collectReportInputs(const fs::path& dir) {
                      "here (run `make run`, or the stages with -o DIR/cells, "
                      "DIR/vis, DIR/radiosity)");
   if (fs::is_regular_file(dir / "timings.json")) in.timings = readStatsJson(dir / "timings.json");
+  if (fs::is_regular_file(dir / "vis" / "verify.txt")) {
+    std::ifstream f(dir / "vis" / "verify.txt");
+    std::ostringstream text;
+    text << f.rdbuf();
+    in.verify = text.str();
+  }
 
   std::vector<fs::path> pngs;
   for (const fs::path& folder : {dir / "radiosity", dir}) {

@@ -23,7 +23,8 @@ struct ReportInputs {
   std::string title;
   std::optional<nlohmann::json> cells, vis, radiosity;  ///< cells/, vis/, radiosity/ stats.json
   std::optional<nlohmann::json>
-      timings;  ///< timings.json of `make run`: {"steps":[{name,seconds}]}
+      timings;         ///< timings.json of `make run`: {"steps":[{name,seconds}]}
+  std::string verify;  ///< what `globalvis verify` printed (vis/verify.txt), if saved
   std::vector<ReportPicture> pictures;
   std::string viewerHref;  ///< relative link to viewer.html; empty: no viewer
 };
@@ -31,7 +32,8 @@ struct ReportInputs {
 /// The report as one HTML document.
 std::string reportHtml(const ReportInputs& inputs);
 
-/// Reads a run directory into ReportInputs: the three stats.json files, timings.json, every PNG
+/// Reads a run directory into ReportInputs: the three stats.json files, timings.json,
+/// vis/verify.txt, every PNG
 /// in DIR/radiosity/ and DIR (render.png, links_visible.png, links_partial.png first) and
 /// viewer.html if present. Throws InputError if the directory holds none of the stats files.
 ReportInputs collectReportInputs(const std::filesystem::path& dir);

@@ -205,6 +205,9 @@ function start() {
       api.selectPatch(p);
     }
   });
+  window.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape') api.clearSelection();
+  });
   controls.addEventListener('change', render);
   window.addEventListener('resize', resize);
   resize();

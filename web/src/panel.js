@@ -104,7 +104,7 @@ export function createPanel(doc, data, state, pairs, api) {
       class: 'gv-muted',
       text: 'Drag to orbit, right-drag to pan, wheel to zoom. Click a patch (yellow) to see what it ' +
         'sees (VISIBLE white, PARTIAL green); shift-click one of its partners, or pick one below, ' +
-        'for the interaction (receiver cyan): its tube (red) and blockers (orange).',
+        'for the interaction (receiver cyan): its tube (red) and blockers (orange). Esc clears.',
     }),
   );
 

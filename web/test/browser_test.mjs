@@ -183,7 +183,9 @@ async function testViewer(context, runDir, work, errors) {
   }
 
   // Layer toggles: each one is drawn (the picture changes) when switched on.
-  await page.evaluate(() => window.viewerApi.clearSelection());
+  await page.keyboard.press('Escape');
+  const cleared = await page.evaluate(() => window.viewerState.selectedPatch === null && window.viewerState.selectedPair === null);
+  check(cleared, 'Escape clears the selection');
   let last = await screenshot(page, join(work, 'viewer-4-cleared.png'));
   for (const name of ['visibleLinks', 'partialLinks', 'cells', 'portals']) {
     await page.click(`#gv-toggle-${name}`);
