@@ -86,10 +86,18 @@ json viewerDataJson(const RunFiles& files, const std::string& title,
   if (!files.visibilityTxt.empty()) {
     const std::string path = files.visibilityTxt.string();
     const VisibilityGraph graph = readVisibilityTxt(path);
+    size_t entries = 0;
+    for (const Interaction& in : graph.interactions) entries += in.blockers.size();
+    const bool embedBlockers = entries <= options.maxBlockerEntries;
     json pairs = {{"s", json::array()},
                   {"r", json::array()},
                   {"blockerCounts", json::array()},
-                  {"blockers", json::array()}};
+                  {"blockers", json::array()},
+                  {"blockersEmbedded", embedBlockers}};
+    if (!embedBlockers)
+      data["notes"].push_back(
+          path + " has " + std::to_string(entries) +
+          " blocker entries, more than the page embeds: blocker lists left out");
     for (const Interaction& in : graph.interactions) {
       if (in.r >= scene.patches.size())
         throw InputError(path, 0,
@@ -101,7 +109,7 @@ json viewerDataJson(const RunFiles& files, const std::string& title,
       for (uint32_t b : in.blockers) {
         if (b >= scene.patches.size())
           throw InputError(path, 0, "blocker " + std::to_string(b) + " is not a patch");
-        pairs["blockers"].push_back(b);
+        if (embedBlockers) pairs["blockers"].push_back(b);
       }
     }
     data["pairs"] = std::move(pairs);

@@ -14,6 +14,9 @@ struct ViewerDataOptions {
   /// elements.ply is embedded (smooth radiosity shading) only up to this many vertices; above
   /// it the page shades each patch by its radiosity.txt value.
   size_t maxElementVertices = 400'000;
+  /// Blocker lists are embedded only while their total length is at most this; above it the
+  /// page keeps each pair's blocker count but not the lists (tubes still show, blockers not).
+  size_t maxBlockerEntries = 2'000'000;
 };
 
 /// The viewer's JSON (format "globalvis-viewer-1"; read by web/src/scene_data.js). Needs

@@ -1,5 +1,7 @@
 // globalvis view (viewer.html, paper §7.5): the readers of a run's files, and the data embedded in
 // the page checked against the run's files as the test parses them itself.
+#include "report/viewer_data.h"
+
 #include <gtest/gtest.h>
 
 #include <regex>
@@ -163,6 +165,34 @@ TEST(ViewCli, MissingBundleAndInconsistentFilesAreClearErrors) {
       test::runCli("view " + test::quotedPath(empty) + " --bundle " + test::quotedPath(bundle));
   EXPECT_EQ(none.exitCode, 2);
   EXPECT_NE(none.output.find("no patches.obj"), std::string::npos) << none.output;
+}
+
+}  // namespace
+}  // namespace gv
+
+namespace gv {
+namespace {
+
+TEST(ViewerData, SizeLimitsDropTheBulkButKeepCounts) {
+  std::string error;
+  const std::filesystem::path& run = test::smallRun(&error);
+  ASSERT_FALSE(run.empty()) << error;
+  const RunFiles files = findRunFiles(run);
+  const nlohmann::json full = viewerDataJson(files, "full");
+  ASSERT_TRUE(full["pairs"]["blockersEmbedded"].get<bool>());
+  ASSERT_FALSE(full["elements"].is_null());
+  ASSERT_TRUE(full["notes"].empty());
+
+  ViewerDataOptions small;
+  small.maxBlockerEntries = 0;
+  small.maxElementVertices = 0;
+  const nlohmann::json cut = viewerDataJson(files, "cut", small);
+  EXPECT_FALSE(cut["pairs"]["blockersEmbedded"].get<bool>());
+  EXPECT_TRUE(cut["pairs"]["blockers"].empty());
+  EXPECT_EQ(cut["pairs"]["blockerCounts"], full["pairs"]["blockerCounts"]);
+  EXPECT_TRUE(cut["elements"].is_null());
+  EXPECT_EQ(cut["radiosity"], full["radiosity"]);  // per-patch shading remains
+  EXPECT_EQ(cut["notes"].size(), 2u);
 }
 
 }  // namespace

@@ -130,11 +130,13 @@ export function createPanel(doc, data, state, pairs, api) {
       const [s, r] = state.selectedPair;
       const k = pairs.find(s, r);
       const blockers = pairs.blockersOf(k);
+      const n = pairs.blockerCount(k);
+      const shown = pairs.blockersEmbedded ? 'orange' : 'not embedded in this page';
       selection.appendChild(
         el(doc, 'div', { id: 'gv-pair' }, [
           swatch(doc, 0xff2020),
           doc.createTextNode(
-            `interaction ${s}-${r}: ${blockers.length ? `PARTIAL, ${blockers.length} blockers (orange)` : 'VISIBLE'}` +
+            `interaction ${s}-${r}: ${n ? `PARTIAL, ${n} blockers (${shown})` : 'VISIBLE'}` +
               (blockers.length ? `: ${blockers.slice(0, MAX_LISTED_BLOCKERS).join(' ')}` : '') +
               (blockers.length > MAX_LISTED_BLOCKERS ? ' …' : ''),
           ),
@@ -142,10 +144,10 @@ export function createPanel(doc, data, state, pairs, api) {
       );
     }
     const list = el(doc, 'ul', { id: 'gv-partners' });
-    const sorted = [...ks].sort((a, b) => pairs.blockersOf(b).length - pairs.blockersOf(a).length);
+    const sorted = [...ks].sort((a, b) => pairs.blockerCount(b) - pairs.blockerCount(a));
     for (const k of sorted) {
       const q = pairs.partnerOf(k, p);
-      const n = pairs.blockersOf(k).length;
+      const n = pairs.blockerCount(k);
       const current = state.selectedPair && pairs.find(...state.selectedPair) === k;
       list.appendChild(
         el(doc, 'li', { class: current ? 'gv-current' : '', 'data-partner': String(q), onclick: () => api.selectPair(p, q) }, [

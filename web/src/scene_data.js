@@ -65,8 +65,14 @@ export function unpackPairs(packed, patchCount) {
     count,
     s: packed ? packed.s : [],
     r: packed ? packed.r : [],
+    /** False when the page was written without the lists (too many): counts only. */
+    blockersEmbedded: !packed || packed.blockersEmbedded !== false,
+    blockerCount(k) {
+      return offset[k + 1] - offset[k];
+    },
+    /** The blockers of pair k ([] when the lists are not embedded). */
     blockersOf(k) {
-      return packed.blockers.slice(offset[k], offset[k + 1]);
+      return this.blockersEmbedded ? packed.blockers.slice(offset[k], offset[k + 1]) : [];
     },
     isVisible(k) {
       return offset[k + 1] === offset[k];
