@@ -235,6 +235,11 @@ async function testReport(context, runDir, work, errors) {
   if (check(!!frame, 'report frames the viewer')) {
     await frame.waitForFunction(() => window.viewerState && window.viewerState.ready, null, { timeout: TIMEOUT_MS });
     check(true, 'the framed viewer starts');
+    const framed = page.locator('#viewer-frame');
+    await framed.scrollIntoViewIfNeeded();
+    const png = await framed.screenshot({ path: join(work, 'report-viewer-frame.png'), timeout: TIMEOUT_MS });
+    const colors = distinctColors(await decodePng(page, png));
+    check(colors >= MIN_DISTINCT_COLORS, 'the framed viewer draws the scene', `${colors} distinct colours`);
   }
   await page.screenshot({ path: join(work, 'report.png'), fullPage: true, timeout: TIMEOUT_MS });
   await page.close();
