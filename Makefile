@@ -19,6 +19,7 @@ run: build
 
 test: test-release test-asan
 
+# nodejs: the machine's Node.js 20 (playwright-core needs >= 20; Debian 12's own is 18).
 # The viewer's npm packages (three, esbuild, playwright-core; pinned by web/package-lock.json) are
 # installed by `npm ci` whenever the lock is newer than web/node_modules.
 deps:

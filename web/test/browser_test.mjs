@@ -5,6 +5,7 @@
 // pictures and the framed viewer, and that no page logs an error. Screenshots stay in --work.
 //
 // Usage: node browser_test.mjs --cli build/globalvis --work DIR [--chromium /usr/bin/chromium]
+//        [--run OUT]   (check the pages of an existing run, e.g. `make run`'s out/, unchanged)
 import { execFileSync } from 'node:child_process';
 import { copyFileSync, existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -256,9 +257,10 @@ function watch(page, name, errors) {
 async function main() {
   const args = parseArgs(process.argv.slice(2));
   const work = resolve(args.work);
-  const runDir = join(work, 'run');
+  const runDir = args.run ? resolve(args.run) : join(work, 'run');
   if (!existsSync(args.chromium)) throw new Error(`${args.chromium} not found: apt-get install -y chromium (make deps does)`);
-  makeRun(resolve(args.cli), runDir);
+  mkdirSync(work, { recursive: true });
+  if (!args.run) makeRun(resolve(args.cli), runDir);
 
   const profile = mkdtempSync(join(tmpdir(), 'globalvis-chromium-'));
   const errors = [];
@@ -285,10 +287,12 @@ async function main() {
   try {
     await testViewer(context, runDir, work, errors);
     await testMaterialOnly(context, resolve(args.cli), runDir, work, errors);
-    // The report embeds every PNG of the run; make sure there is one (besides whatever the
-    // radiosity stage draws) by adding the viewer's screenshot, then write the report again.
-    copyFileSync(join(work, 'viewer-1-scene.png'), join(runDir, 'viewer_screenshot.png'));
-    run(resolve(args.cli), ['report', runDir]);
+    if (!args.run) {
+      // The report embeds every PNG of the run; make sure there is one (besides whatever the
+      // radiosity stage draws) by adding the viewer's screenshot, then write the report again.
+      copyFileSync(join(work, 'viewer-1-scene.png'), join(runDir, 'viewer_screenshot.png'));
+      run(resolve(args.cli), ['report', runDir]);
+    }
     await testReport(context, runDir, work, errors);
   } finally {
     await context.close();
