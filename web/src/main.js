@@ -5,7 +5,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { COLORS, buildLayers } from './layers.js';
 import { createPanel } from './panel.js';
-import { readEmbeddedData, unpackPairs } from './scene_data.js';
+import { readEmbeddedData, unpackPairs, unpackPolygons, upAxis } from './scene_data.js';
 import { pairSelectionGroup, patchSelectionGroup } from './selection.js';
 
 /** A click is a pick only if the pointer moved less than this many pixels (else it orbited). */
@@ -19,6 +19,13 @@ function start() {
   const hi = new THREE.Vector3(...data.bounds.max);
   const diagonal = lo.distanceTo(hi) || 1;
   const center = lo.clone().add(hi).multiplyScalar(0.5);
+  const up = upAxis(unpackPolygons(data.patches), (i) => {
+    const m = data.materials[data.patches.material[i]];
+    return !!m && Math.max(...m.ke) > 0;
+  });
+  const upVector = new THREE.Vector3().setComponent(up, 1);
+  const loUp = lo.getComponent(up);
+  const hiUp = hi.getComponent(up);
 
   const state = {
     ready: false,
@@ -29,7 +36,8 @@ function start() {
     selectedPair: null,
     shading: data.elements || data.radiosity ? 'radiosity' : 'material',
     show: { cells: false, portals: false, visibleLinks: false, partialLinks: false },
-    sectionHeight: lo.z + 0.8 * (hi.z - lo.z),
+    upAxis: up,
+    sectionHeight: loUp + 0.8 * (hiUp - loUp),
   };
   window.viewerState = state;
 
@@ -41,7 +49,8 @@ function start() {
   document.body.appendChild(renderer.domElement);
   renderer.domElement.id = 'gv-canvas';
 
-  const section = new THREE.Plane(new THREE.Vector3(0, 0, -1), state.sectionHeight);
+  // Keeps what is below the section height along the up axis.
+  const section = new THREE.Plane(upVector.clone().negate(), state.sectionHeight);
   const layers = buildLayers(data, pairs, [section]);
   const scene = new THREE.Scene();
   scene.add(layers.surfaces.material);
@@ -52,10 +61,15 @@ function start() {
   let overlay = null;
 
   const camera = new THREE.PerspectiveCamera(45, 1, diagonal * 1e-3, diagonal * 20);
-  camera.up.set(0, 0, 1);
+  camera.up.copy(upVector);
   const controls = new OrbitControls(camera, renderer.domElement);
   const resetView = () => {
-    camera.position.copy(center).add(new THREE.Vector3(-0.25, -0.75, 0.95).multiplyScalar(diagonal * 0.85));
+    // From above and in front: 0.95 along up, -0.75 and -0.25 along the next two axes.
+    const offset = new THREE.Vector3()
+      .setComponent(up, 0.95)
+      .setComponent((up + 1) % 3, -0.25)
+      .setComponent((up + 2) % 3, -0.75);
+    camera.position.copy(center).add(offset.multiplyScalar(diagonal * 0.85));
     controls.target.copy(center);
     controls.update();
   };
@@ -153,7 +167,7 @@ function start() {
       const raycaster = new THREE.Raycaster();
       raycaster.setFromCamera(ndc, camera);
       for (const hit of raycaster.intersectObject(layers.pick, false)) {
-        if (hit.point.z > state.sectionHeight) continue;
+        if (hit.point.getComponent(up) > state.sectionHeight) continue;
         return layers.pick.userData.polygonOfTriangle[hit.faceIndex];
       }
       return null;

@@ -87,8 +87,8 @@ export function createPanel(doc, data, state, pairs, api) {
   shading.addEventListener('change', () => api.setShading(shading.value));
   panel.appendChild(el(doc, 'label', {}, [doc.createTextNode('shading '), shading]));
 
-  const lo = data.bounds.min[2];
-  const hi = data.bounds.max[2];
+  const lo = data.bounds.min[state.upAxis];
+  const hi = data.bounds.max[state.upAxis];
   const slider = el(doc, 'input', { type: 'range', min: '0', max: '1000', id: 'gv-section' });
   slider.addEventListener('input', () => api.setSectionHeight(lo + (hi - lo) * (slider.value / 1000) * 1.001));
   panel.appendChild(el(doc, 'label', {}, [doc.createTextNode('cut away above '), slider]));

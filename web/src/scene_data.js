@@ -87,3 +87,23 @@ export function unpackPairs(packed, patchCount) {
     byPatch,
   };
 }
+
+/**
+ * The scene's up axis (0 = x, 1 = y, 2 = z): the axis opposite to which the emitters face on
+ * the whole (ceiling lights face down), when that is clear; else z, the project's convention.
+ */
+export function upAxis(polygons, isEmitter) {
+  const sum = [0, 0, 0];
+  let count = 0;
+  polygons.forEach((p, i) => {
+    if (!isEmitter(i)) return;
+    const n = polygonNormal(p);
+    for (let k = 0; k < 3; ++k) sum[k] += n[k];
+    count += 1;
+  });
+  if (count === 0) return 2;
+  let best = 2;
+  for (let k = 0; k < 3; ++k) if (Math.abs(sum[k]) > Math.abs(sum[best])) best = k;
+  // Only a clear majority facing down along one axis decides.
+  return sum[best] < -0.5 * count ? best : 2;
+}

@@ -42,9 +42,9 @@ export function patchSelectionGroup(layers, pairs, p, diagonal, clippingPlanes) 
   const partial = [];
   for (const k of pairs.byPatch[p]) (pairs.isVisible(k) ? visible : partial).push(k);
   const partners = (ks) => ks.map((k) => pairs.partnerOf(k, p));
-  group.add(patchOverlay(layers, partners(visible), COLORS.visibleLink, 0.5, offset, clippingPlanes));
+  group.add(patchOverlay(layers, partners(visible), COLORS.visibleLink, 0.35, offset, clippingPlanes));
   group.add(linkSegments(visible, pairs, layers.centroids, COLORS.visibleLink));
-  group.add(patchOverlay(layers, partners(partial), COLORS.partialLink, 0.5, offset, clippingPlanes));
+  group.add(patchOverlay(layers, partners(partial), COLORS.partialLink, 0.35, offset, clippingPlanes));
   group.add(linkSegments(partial, pairs, layers.centroids, COLORS.partialLink));
   group.add(patchOverlay(layers, [p], COLORS.source, 0.85, offset, clippingPlanes));
   return group;
