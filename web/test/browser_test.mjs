@@ -296,7 +296,7 @@ async function main() {
     await testReport(context, runDir, work, errors);
   } finally {
     await context.close();
-    rmSync(profile, { recursive: true, force: true });
+    rmSync(profile, { recursive: true, force: true, maxRetries: 5, retryDelay: 200 });
   }
   check(errors.length === 0, 'no console errors, exceptions or network requests', errors.join('; '));
   writeFileSync(join(work, 'result.txt'), `${passed} passed, ${failed} failed\n`);
