@@ -4,7 +4,7 @@
 
 PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libtinyobjloader-dev libcli11-dev \
             nlohmann-json3-dev libfmt-dev libcgal-dev libembree-dev libtbb-dev libpng-dev \
-            libassimp-dev
+            libassimp-dev nodejs chromium
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD := build
 BUILD_ASAN := build-asan
@@ -19,8 +19,13 @@ run: build
 
 test: test-release test-asan
 
+# nodejs: the machine's Node.js 20 (playwright-core needs >= 20; Debian 12's own is 18).
+# The viewer's npm packages (three, esbuild, playwright-core; pinned by web/package-lock.json) are
+# installed by `npm ci` whenever the lock is newer than web/node_modules.
 deps:
 	@./scripts/ensure-packages.sh $(PACKAGES)
+	@command -v npm > /dev/null || ./scripts/ensure-packages.sh npm
+	@[ web/node_modules/.package-lock.json -nt web/package-lock.json ] || (cd web && npm ci --no-audit --no-fund)
 
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release > $(BUILD).configure.log || (cat $(BUILD).configure.log; exit 1)

@@ -6,7 +6,20 @@ set -euo pipefail
 gv="$1"
 out="$2"
 mkdir -p "$out"
-step() { printf '\n== %s ==\n' "$1"; }
+# Each step's wall-clock time goes into $out/timings.json for the report.
+timings="" current="" started=""
+finish_step() {
+  [ -n "$current" ] || return 0
+  local seconds
+  seconds=$(awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN { printf "%.3f", b - a }')
+  timings+="${timings:+,}"$'\n'"    {\"name\": \"${current//\"/}\", \"seconds\": $seconds}"
+  current=""
+}
+step() {
+  finish_step
+  current="$1" started=$(date +%s.%N)
+  printf '\n== %s ==\n' "$1"
+}
 
 step "scene: office, default size"
 "$gv" gen office -o "$out/office.obj"
@@ -21,13 +34,22 @@ step "visibility and blocker lists (paper §4-§5, §7.2-7.3)"
 "$gv" vis "$out/office.obj" -o "$out/vis" --min-coverage 0.3
 
 step "independent check of the visibility by ray casting"
-"$gv" verify "$out/vis" --rays 100000 --segments 20000
+"$gv" verify "$out/vis" --rays 100000 --segments 20000 | tee "$out/vis/verify.txt"
 
 step "hierarchical radiosity (rays visibility, HSA91)"
 "$gv" radiosity "$out/office.obj" -o "$out/radiosity" --quiet
 
-step "done"
-echo "Outputs in $out/: office.obj, cells/ (cells.obj, portals.obj, stats.json),"
-echo "vis/ (patches.obj, visibility.txt, stats.json), radiosity/ (radiosity.txt, elements.ply, stats.json)."
-echo "Not built yet: linespace tubes and the paper's blocker-list radiosity mode, the HTML report"
-echo "and viewer (see README.md, Status)."
+finish_step
+printf '{\n  "steps": [%s\n  ]\n}\n' "$timings" > "$out/timings.json"
+
+step "report and viewer"
+"$gv" view "$out"
+"$gv" report "$out"
+current=""
+
+printf '\n== done ==\n'
+echo "Outputs in $out/: report.html (the paper's §7 figures beside this run's; open it in a browser),"
+echo "viewer.html (interactive: cells, portals, links, tubes and blockers), office.obj,"
+echo "cells/ (cells.obj, portals.obj, stats.json), vis/ (patches.obj, visibility.txt, stats.json),"
+echo "radiosity/ (radiosity.txt, elements.ply, stats.json), timings.json."
+echo "Not built yet: linespace tubes and the paper's blocker-list radiosity mode (see README.md, Status)."

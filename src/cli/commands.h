@@ -2,7 +2,9 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <functional>
+#include <string>
 
 namespace gv::cli {
 
@@ -17,5 +19,13 @@ Action addRadiosityCommand(CLI::App& app);
 Action addVisCommand(CLI::App& app);
 Action addVerifyCommand(CLI::App& app);
 Action addPvsCommand(CLI::App& app);
+Action addViewCommand(CLI::App& app);
+Action addReportCommand(CLI::App& app);
+
+/// The bundled viewer script (`requested`, else the build's); throws InputError when missing.
+std::string readViewerBundle(const std::string& requested);
+/// Writes the viewer page of run directory `dir` to `output` (`globalvis view`).
+void writeViewerPage(const std::filesystem::path& dir, const std::filesystem::path& output,
+                     const std::string& bundlePath);
 
 }  // namespace gv::cli

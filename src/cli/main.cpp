@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
   add(gv::cli::addVisCommand);
   add(gv::cli::addVerifyCommand);
   add(gv::cli::addPvsCommand);
+  add(gv::cli::addViewCommand);
+  add(gv::cli::addReportCommand);
   CLI::App* help = app.add_subcommand("help", "List the subcommands");
 
   try {

@@ -20,4 +20,10 @@ void writeJsonFile(const nlohmann::json& value, const std::filesystem::path& pat
   if (!out) throw InputError(path.string(), 0, "cannot write");
 }
 
+void writeTextFile(const std::string& text, const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw InputError(path.string(), 0, "cannot write");
+}
+
 }  // namespace gv::cli

@@ -13,4 +13,7 @@ std::filesystem::path makeOutputDirectory(const std::string& path);
 /// Writes `value` pretty-printed to `path`; throws InputError naming it on failure.
 void writeJsonFile(const nlohmann::json& value, const std::filesystem::path& path);
 
+/// Writes `text` to `path` as is; throws InputError naming it on failure.
+void writeTextFile(const std::string& text, const std::filesystem::path& path);
+
 }  // namespace gv::cli
