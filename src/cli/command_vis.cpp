@@ -29,12 +29,14 @@ Action addVisCommand(CLI::App& app) {
     bool json = false;
   };
   auto s = std::make_shared<State>();
+  s->bsp.minCoverage = kVisibilityMinCoverage;
   cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--threads", s->propagation.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   cmd->add_option("--min-coverage", s->bsp.minCoverage,
-                  "BSP stop rule (see `globalvis cells --help`)")
+                  "BSP stop rule (see `globalvis cells --help`); 0 splits on every patch plane")
+      ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   return [s] {
