@@ -30,10 +30,14 @@
 //      all extremal lines strictly outside one edge ⇒ every line misses B ⇒ Disjoint;
 //      some extremal line inside all edges, some outside one ⇒ Impinges (kept);
 //      none inside all, none outside one edge for all ⇒ Punt (kept).
-//  - otherwise B's plane cuts S or R ("straddling"): segments cross B in both directions and
-//    some not at all, so B never occludes completely. Disjoint only when two edges have all
-//    extremal lines strictly on opposite sides (then no line from S to R has one sign on all
-//    edges, in either direction); Impinges when some extremal line meets B; else Punt.
+//  - otherwise B's plane cuts S or R ("straddling"): some segments do not cross it at all, so B
+//    never occludes completely. A segment meeting B runs from S ∩ H to R ∩ H' for the two
+//    closed halfspaces H, H' of B's plane, H ≠ H'. So S and R are clipped into those two
+//    "between" sub-problems (at most two; a part thinner than the tolerance is dropped, as the
+//    policy below allows) and classified as above: Disjoint when both are, Impinges when either
+//    occludes or impinges, else Punt. If a clipped part still straddles (rounding), the
+//    σ-free line test decides: Disjoint only when two edges have all extremal lines strictly on
+//    opposite sides (then no line has one sign on all edges, in either direction), else Punt.
 // "On" a plane means within tol.length(), the project's policy: a vertex that close to B's
 // plane counts as on it, which can misjudge segments only within that distance of the plane.
 //
@@ -41,6 +45,8 @@
 // along its normal, B (in a direction it can be crossed), and R against its normal; that is the
 // stabbing test of the portal sequence S, B, R (punt_resolution.h).
 #include "linespace/tube.h"
+
+#include <optional>
 
 #include "linespace/punt_resolution.h"
 
@@ -76,8 +82,33 @@ Tube::Tube(const ConvexPolygon& source, const ConvexPolygon& receiver)
     for (const Vec3& r : receiver.vertices) lines_.push_back(FilteredLine::through(s, r));
 }
 
-BlockerVerdict classifyBlocker(const Tube& tube, const BlockerGeometry& b, const Tolerance& tol,
-                               const TubeOptions& options) {
+namespace {
+
+BlockerVerdict classify(const Tube& tube, const BlockerGeometry& b, const Tolerance& tol,
+                        const TubeOptions& options, bool splitStraddling);
+
+/// The straddling case: the two between sub-problems S ∩ H, R ∩ H' (see the top of the file).
+BlockerVerdict classifyStraddling(const Tube& tube, const BlockerGeometry& b, const Tolerance& tol,
+                                  const TubeOptions& options) {
+  BlockerVerdict v;
+  bool anyImpinges = false, anyPunt = false;
+  for (const Plane& h : {b.plane, b.plane.flipped()}) {
+    const std::optional<ConvexPolygon> s = clipToFront(tube.source(), h, tol);
+    const std::optional<ConvexPolygon> r = clipToFront(tube.receiver(), h.flipped(), tol);
+    if (!s || !r) continue;
+    const BlockerVerdict part = classify(Tube(*s, *r), b, tol, options, false);
+    anyImpinges |=
+        part.outcome == BlockerOutcome::Occludes || part.outcome == BlockerOutcome::Impinges;
+    anyPunt |= part.outcome == BlockerOutcome::Punt;
+    v.wasPunt |= part.wasPunt;
+  }
+  v.outcome = anyImpinges ? BlockerOutcome::Impinges
+                          : (anyPunt ? BlockerOutcome::Punt : BlockerOutcome::Disjoint);
+  return v;
+}
+
+BlockerVerdict classify(const Tube& tube, const BlockerGeometry& b, const Tolerance& tol,
+                        const TubeOptions& options, bool splitStraddling) {
   const double eps = tol.length();
   BlockerVerdict v;
   // Plane tests: B must reach into the front of both S and R, and S and R must not lie on one
@@ -99,6 +130,7 @@ BlockerVerdict classifyBlocker(const Tube& tube, const BlockerGeometry& b, const
   if (s.front && !s.back && r.back && !r.front) sigma = -1;
   if (s.back && !s.front && r.front && !r.back) sigma = +1;
   v.between = sigma != 0;
+  if (sigma == 0 && splitStraddling) return classifyStraddling(tube, b, tol, options);
 
   // Line tests: the sign of each extremal line against each edge.
   const std::span<const FilteredLine> lines = tube.extremalLines();
@@ -153,6 +185,13 @@ BlockerVerdict classifyBlocker(const Tube& tube, const BlockerGeometry& b, const
       v.outcome = BlockerOutcome::Disjoint;
   }
   return v;
+}
+
+}  // namespace
+
+BlockerVerdict classifyBlocker(const Tube& tube, const BlockerGeometry& b, const Tolerance& tol,
+                               const TubeOptions& options) {
+  return classify(tube, b, tol, options, options.splitStraddling);
 }
 
 }  // namespace gv

@@ -40,6 +40,9 @@ struct TubeOptions {
   /// Settle PUNTs by the stabbing-line LP of the sequence S, B, R (exact up to the LP's margin;
   /// an order of magnitude slower than the line tests, and only run on PUNTs).
   bool resolvePunts = true;
+  /// When B's plane cuts S or R, classify the two clipped "between" sub-problems instead of
+  /// only the weaker straddling line test (tube.cpp). Off: the paper's tests alone.
+  bool splitStraddling = true;
 };
 
 /// The set of segments from a source element S to a receiver element R in linespace: the

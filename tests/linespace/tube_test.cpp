@@ -81,7 +81,7 @@ Config randomConfig(std::mt19937& rng, int blockerCount) {
 }
 
 struct Tally {
-  OutcomeCounts single;
+  OutcomeCounts single, paper;
   int impingesExact = 0, puntsExact = 0;
   int tubes[3] = {0, 0, 0};  // by VisibilityStatus
   int partialExact = 0;
@@ -113,8 +113,11 @@ TEST(LinespaceTubeTest, RandomConfigurationsAgreeWithSegmentSampling) {
   const Tolerance tol{20};
   Tally t;
   constexpr int kConfigs = 600, kSamples = 300, kBlockers = 4;
+  TubeOptions paperOnly;
+  paperOnly.resolvePunts = false;
+  paperOnly.splitStraddling = false;
   for (int iter = 0; iter < kConfigs; ++iter) {
-    const Config c = randomConfig(rng, kBlockers);
+    const Config c = randomConfig(rng, 1 + iter % kBlockers);
     const BlockerTable table(c.blockers);
     std::vector<uint32_t> ids(c.blockers.size());
     for (uint32_t k = 0; k < ids.size(); ++k) ids[k] = k;
@@ -129,6 +132,15 @@ TEST(LinespaceTubeTest, RandomConfigurationsAgreeWithSegmentSampling) {
         EXPECT_FALSE(sm.anyFree()) << "iter " << iter;
       }
       if (v.outcome == BlockerOutcome::Disjoint) {
+        EXPECT_FALSE(sm.anyBlocked()) << "iter " << iter;
+      }
+      // The paper's tests alone (no straddling split, no PUNT resolution) must be sound too.
+      const BlockerVerdict paper = classifyBlocker(tube, table[k], tol, paperOnly);
+      t.paper.add(paper);
+      if (paper.outcome == BlockerOutcome::Occludes) {
+        EXPECT_FALSE(sm.anyFree()) << "iter " << iter;
+      }
+      if (paper.outcome == BlockerOutcome::Disjoint) {
         EXPECT_FALSE(sm.anyBlocked()) << "iter " << iter;
       }
       if (v.outcome == BlockerOutcome::Impinges) t.impingesExact += sm.anyBlocked() && sm.anyFree();
@@ -177,6 +189,13 @@ TEST(LinespaceTubeTest, RandomConfigurationsAgreeWithSegmentSampling) {
       o.occludes, o.impinges, t.impingesExact, o.disjoint, o.byPlanes, o.punt, t.puntsExact,
       o.straddling, o.puntsTested, o.puntsRemoved, t.tubes[0], t.tubes[1], t.tubes[2],
       t.partialExact, t.childTubes[0], t.childTubes[1], t.childTubes[2], t.childPartialExact);
+  const OutcomeCounts& p = t.paper;
+  EXPECT_LE(o.punt, p.punt);
+  EXPECT_GE(o.disjoint, p.disjoint);
+  const auto paperReport =
+      fmt::format("paper's tests alone: occludes {} impinges {} disjoint {} punt {}", p.occludes,
+                  p.impinges, p.disjoint, p.punt);
+  std::printf("%s\n", paperReport.c_str());
   RecordProperty("counts", report);
   std::printf("%s\n", report.c_str());
 }
