@@ -79,11 +79,12 @@ const Fixture& fixture() {
   return f;
 }
 
-void classify(benchmark::State& state, bool resolvePunts) {
+void classify(benchmark::State& state, bool resolvePunts, bool splitStraddling) {
   const Fixture& f = fixture();
   const Tolerance tol = f.scene.tolerance();
   TubeOptions options;
   options.resolvePunts = resolvePunts;
+  options.splitStraddling = splitStraddling;
   OutcomeCounts counts;
   uint64_t tests = 0, hash = 1469598103934665603ull;
   for (auto _ : state) {
@@ -111,14 +112,22 @@ void classify(benchmark::State& state, bool resolvePunts) {
   state.counters["hash"] = static_cast<double>(hash % 1000000007ull);
 }
 
+/// The project's default: straddling blockers split, PUNTs resolved by the stabbing test.
 void BM_ClassifyBlockersOffice(benchmark::State& state) {
-  classify(state, true);
+  classify(state, true, true);
 }
-BENCHMARK(BM_ClassifyBlockersOffice)->Unit(benchmark::kMillisecond);
-void BM_ClassifyBlockersOfficeNoPuntResolution(benchmark::State& state) {
-  classify(state, false);
+BENCHMARK(BM_ClassifyBlockersOffice)->Unit(benchmark::kMillisecond)->Iterations(1);
+/// Straddling blockers split, no stabbing test (what `blockers` mode uses; see
+/// blocker_visibility.h).
+void BM_ClassifyBlockersOfficeNoStabbing(benchmark::State& state) {
+  classify(state, false, true);
 }
-BENCHMARK(BM_ClassifyBlockersOfficeNoPuntResolution)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClassifyBlockersOfficeNoStabbing)->Unit(benchmark::kMillisecond);
+/// The paper's tests alone.
+void BM_ClassifyBlockersOfficePaperOnly(benchmark::State& state) {
+  classify(state, false, false);
+}
+BENCHMARK(BM_ClassifyBlockersOfficePaperOnly)->Unit(benchmark::kMillisecond);
 
 /// Blocked answers of both methods on the fixture's segments; aborts when they disagree on more
 /// than 0.2 % (Embree is single precision: on the office 0.09 % of the segments differ, and there
