@@ -43,6 +43,9 @@ struct TubeOptions {
   /// When B's plane cuts S or R, classify the two clipped "between" sub-problems instead of
   /// only the weaker straddling line test (tube.cpp). Off: the paper's tests alone.
   bool splitStraddling = true;
+  /// When no single blocker occludes, try coplanar groups of between blockers jointly
+  /// (coplanar_cover.h): a wall of several patches makes the tube INVISIBLE.
+  bool coplanarCover = true;
 };
 
 /// The set of segments from a source element S to a receiver element R in linespace: the

@@ -1,6 +1,10 @@
 // Multi-blocker logic and statistics of incremental blocker maintenance. Paper §6.2, §7.4.
 #include "linespace/tube_classification.h"
 
+#include <cmath>
+
+#include "linespace/coplanar_cover.h"
+
 namespace gv {
 
 void OutcomeCounts::add(const BlockerVerdict& v) {
@@ -33,6 +37,7 @@ OutcomeCounts& OutcomeCounts::operator+=(const OutcomeCounts& o) {
   straddling += o.straddling;
   puntsTested += o.puntsTested;
   puntsRemoved += o.puntsRemoved;
+  coplanarCovers += o.coplanarCovers;
   return *this;
 }
 
@@ -40,6 +45,7 @@ TubeVerdict classifyTube(const Tube& tube, std::span<const uint32_t> blockers,
                          const BlockerTable& table, const Tolerance& tol,
                          const TubeOptions& options) {
   TubeVerdict t;
+  std::vector<uint32_t> between;  // kept blockers with S and R on opposite sides of their plane
   for (const uint32_t id : blockers) {
     const BlockerVerdict v = classifyBlocker(tube, table[id], tol, options);
     t.counts.add(v);
@@ -49,9 +55,37 @@ TubeVerdict classifyTube(const Tube& tube, std::span<const uint32_t> blockers,
       t.blockers.clear();
       return t;
     }
-    if (v.outcome != BlockerOutcome::Disjoint) t.blockers.push_back(id);
+    if (v.outcome == BlockerOutcome::Disjoint) continue;
+    t.blockers.push_back(id);
+    if (v.between) between.push_back(id);
   }
   t.status = t.blockers.empty() ? VisibilityStatus::Visible : VisibilityStatus::Partial;
+  if (!options.coplanarCover || between.size() < 2) return t;
+  // Coplanar groups: the blockers whose vertices all lie on the plane of the group's first.
+  const double eps = tol.length();
+  std::vector<bool> grouped(between.size(), false);
+  std::vector<const BlockerGeometry*> group;
+  for (size_t i = 0; i < between.size(); ++i) {
+    if (grouped[i]) continue;
+    const Plane& plane = table[between[i]].plane;
+    group.assign(1, &table[between[i]]);
+    for (size_t j = i + 1; j < between.size(); ++j) {
+      const BlockerGeometry& b = table[between[j]];
+      bool on = !grouped[j];
+      for (size_t k = 0; k < b.vertices.size() && on; ++k)
+        on = std::abs(plane.distance(b.vertices[k])) <= eps;
+      if (!on) continue;
+      grouped[j] = true;
+      group.push_back(&b);
+    }
+    if (group.size() >= 2 && coplanarBlockersCover(tube, group, tol)) {
+      t.status = VisibilityStatus::Invisible;
+      t.proof = between[i];
+      t.blockers.clear();
+      ++t.counts.coplanarCovers;
+      return t;
+    }
+  }
   return t;
 }
 

@@ -25,6 +25,9 @@ struct OutcomeCounts {
   uint64_t straddling = 0;    ///< of all, B's plane cut S or R (never Occludes)
   uint64_t puntsTested = 0;   ///< line tests said PUNT (then the stabbing test ran, if enabled)
   uint64_t puntsRemoved = 0;  ///< of those, the stabbing test proved disjoint
+  /// Tubes found INVISIBLE by coplanar blockers jointly (no single one occluded); not counted
+  /// in total(), which counts single-blocker classifications.
+  uint64_t coplanarCovers = 0;
   uint64_t total() const { return occludes + impinges + disjoint + punt; }
   void add(const BlockerVerdict& v);
   OutcomeCounts& operator+=(const OutcomeCounts& o);
@@ -41,7 +44,9 @@ struct TubeVerdict {
 
 /// Classifies each blocker of `blockers` (ids into `table`) against the tube, stopping at the
 /// first that occludes completely (INVISIBLE, that blocker the proof). VISIBLE when every one is
-/// disjoint, PARTIAL otherwise.
+/// disjoint. Otherwise, with options.coplanarCover, a group of kept between blockers in one plane
+/// that jointly covers the tube makes it INVISIBLE too (proof: the group's first blocker);
+/// PARTIAL otherwise.
 TubeVerdict classifyTube(const Tube& tube, std::span<const uint32_t> blockers,
                          const BlockerTable& table, const Tolerance& tol,
                          const TubeOptions& options = {});

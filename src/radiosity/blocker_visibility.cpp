@@ -28,7 +28,8 @@ nlohmann::json levelJson(const LevelStats& l) {
           {"punt", o.punt},
           {"straddling", o.straddling},
           {"punts_tested", o.puntsTested},
-          {"punts_removed_by_stabbing", o.puntsRemoved}};
+          {"punts_removed_by_stabbing", o.puntsRemoved},
+          {"invisible_by_coplanar_blockers", o.coplanarCovers}};
 }
 
 }  // namespace
