@@ -65,6 +65,13 @@ class Tube {
   std::vector<FilteredLine> lines_;
 };
 
+/// How much of an element a blocker lying on the element's plane covers.
+enum class ContactCover : uint8_t { None, Part, All };
+/// None unless every vertex of `b` lies within tol.length() of the element's plane; then All when
+/// the element lies inside b, Part when they overlap in more than a sliver, else None.
+ContactCover contactCover(const ConvexPolygon& element, const BlockerGeometry& b,
+                          const Tolerance& tol);
+
 /// Classifies blocker `b` against the tube (see tube.cpp for why each outcome is sound).
 /// `tol.length()` decides "on a plane" for the plane tests; the line tests are exact.
 BlockerVerdict classifyBlocker(const Tube& tube, const BlockerGeometry& b, const Tolerance& tol,

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "linespace/contact_blockers.h"
 #include "linespace/segment_blocking.h"
 #include "radiosity/polygon_sampling.h"
 
@@ -56,10 +57,20 @@ TubeId BlockerVisibility::addTube(const std::vector<uint32_t>& blockers) {
 
 void BlockerVisibility::forEachCandidatePair(
     const std::function<void(uint32_t, uint32_t, TubeId)>& visit) {
+  // Each pair's blockers: the graph's list plus the patches resting on S or R (contact covers,
+  // which propagation's "seen from S or R" lists miss; contact_blockers.h).
+  const std::vector<std::vector<uint32_t>> contacts = contactBlockers(scene_);
+  std::vector<uint32_t> list;
   for (const Interaction& in : graph_.interactions) {
     if (in.s >= scene_.patches.size() || in.r >= scene_.patches.size())
       throw std::invalid_argument("visibility graph does not belong to this scene");
-    visit(in.s, in.r, in.blockers.empty() ? kVisibleTube : addTube(in.blockers));
+    list = in.blockers;
+    for (const uint32_t end : {in.s, in.r})
+      for (const uint32_t c : contacts[end])
+        if (c != in.s && c != in.r) list.push_back(c);
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    visit(in.s, in.r, list.empty() ? kVisibleTube : addTube(list));
   }
 }
 
@@ -101,7 +112,7 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
   e.status = VisibilityStatus::Partial;
   e.raysCast = samples.from.size();
   e.fraction = unblockedFraction(a.polygon, b.polygon, samples, [&](const Vec3& p, const Vec3& q) {
-    return segmentBlocked(p, q, v.blockers, table_);
+    return segmentBlocked(p, q, v.blockers, table_, tol_.length());
   });
   e.tube = addTube(v.blockers);
   return e;

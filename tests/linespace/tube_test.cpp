@@ -10,6 +10,7 @@
 #include <array>
 
 #include "linespace/linespace_oracle.h"
+#include "linespace/segment_blocking.h"
 #include "linespace/tube_classification.h"
 #include "radiosity/element_tree.h"
 
@@ -347,6 +348,27 @@ TEST(LinespaceTubeTest, CoplanarPiecesOfAnOccluderOccludeJointly) {
   EXPECT_GE(gapsSeen, 10);
   std::printf("joint occlusions %d, gapped pairs kept PARTIAL %d (free segment sampled in %d)\n",
               joint, gapsKept, gapsSeen);
+}
+
+TEST(LinespaceTubeTest, BlockerRestingOnAnElementCoversIt) {
+  // A box's bottom face (facing down) lies on the floor: a floor element entirely under it is
+  // covered (every segment from it ends on the bottom face); one half under it is not.
+  const Tolerance tol{20};
+  const std::vector<ConvexPolygon> bottom{square(0, 0, 2, 2, 0, false)};
+  const BlockerTable table(bottom);
+  const ConvexPolygon light = square(0, 0, 4, 4, 3, false);
+  const BlockerVerdict under =
+      classifyBlocker(Tube(square(0.5, 0.5, 1.5, 1.5, 0, true), light), table[0], tol);
+  EXPECT_EQ(under.outcome, BlockerOutcome::Occludes);
+  const BlockerVerdict half =
+      classifyBlocker(Tube(square(1, 0.5, 3, 1.5, 0, true), light), table[0], tol);
+  EXPECT_EQ(half.outcome, BlockerOutcome::Disjoint);
+  EXPECT_EQ(contactCover(square(1, 0.5, 3, 1.5, 0, true), table[0], tol), ContactCover::Part);
+  EXPECT_EQ(contactCover(square(3, 3, 4, 4, 0, true), table[0], tol), ContactCover::None);
+  // Sample segments starting on the covered part count as blocked, the others do not.
+  const std::vector<uint32_t> ids{0};
+  EXPECT_TRUE(segmentBlocked({1, 1, 0}, {1, 1, 3}, ids, table, tol.length()));
+  EXPECT_FALSE(segmentBlocked({2.5, 1, 0}, {1, 1, 3}, ids, table, tol.length()));
 }
 
 }  // namespace
