@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "bsp/subdivision.h"
@@ -15,6 +18,8 @@
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
+#include "support/run_cli.h"
+#include "support/temp_dir.h"
 #include "visibility/propagation.h"
 #include "visibility/ray_oracle.h"
 
@@ -195,6 +200,27 @@ TEST(BlockerVisibilityTest, EmitterOverReceiverGivesRhoEF) {
   EXPECT_NEAR(r.patchRadiosity[0].r, 0.6 * 3 * f, 2e-3 * 0.6 * 3 * f);
   EXPECT_NEAR(r.patchRadiosity[0].b, 0.6 * 1 * f, 2e-3 * 0.6 * 1 * f);
   EXPECT_EQ(r.stats.rays, 0u);  // VISIBLE: no ray is ever cast
+}
+
+TEST(BlockerVisibilityTest, CliRunsBlockersModeAndWritesLinespaceStats) {
+  // `globalvis radiosity --visibility blockers` on the Cornell box: BSP + propagation first, the
+  // same output files, and the linespace statistics in stats.json.
+  const auto dir = test::scratchDir();
+  const auto obj = dir / "cornell.obj";
+  ASSERT_EQ(test::runCli("gen cornell -o '" + obj.string() + "'").exitCode, 0);
+  const auto out = dir / "out";
+  const test::CliResult r = test::runCli("radiosity '" + obj.string() + "' -o '" + out.string() +
+                                         "' --visibility blockers --epsilon 2e-4 -q");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(out / "radiosity.txt"));
+  EXPECT_TRUE(std::filesystem::exists(out / "patches.obj"));
+  std::ifstream stats(out / "stats.json");
+  const nlohmann::json j = nlohmann::json::parse(stats);
+  EXPECT_EQ(j["visibility"], "blockers");
+  EXPECT_GT(j["linespace"]["total"]["tubes"].get<uint64_t>(), 0u);
+  EXPECT_GT(j["linespace"]["total"]["invisible"].get<uint64_t>(), 0u);
+  EXPECT_GE(j["linespace"]["levels"].size(), 2u);
+  EXPECT_GT(j["linespace"]["visibility_graph_seconds"].get<double>(), 0.0);
 }
 
 }  // namespace
