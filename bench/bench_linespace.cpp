@@ -133,9 +133,10 @@ BENCHMARK(BM_ClassifyBlockersOfficePaperOnly)->Unit(benchmark::kMillisecond);
 /// than 0.2 % (Embree is single precision: on the office 0.09 % of the segments differ, and there
 /// the blocker list agrees with a double-precision brute-force caster).
 void checkSegments(const Fixture& f, const EmbreeScene& bvh) {
+  const double contact = f.scene.tolerance().length();
   size_t differ = 0, blocked = 0;
   for (const Fixture::Seg& s : f.segments) {
-    const bool list = segmentBlocked(s.p, s.q, *s.blockers, f.table);
+    const bool list = segmentBlocked(s.p, s.q, *s.blockers, f.table, contact);
     differ += list != bvh.occluded(s.p, s.q, s.a, s.b);
     blocked += list;
   }
@@ -152,11 +153,12 @@ void BM_SegmentVsBlockerList(benchmark::State& state) {
     const EmbreeScene bvh(f.scene);
     checkSegments(f, bvh);
   }
+  const double contact = f.scene.tolerance().length();
   uint64_t blocked = 0, segments = 0;
   for (auto _ : state) {
     blocked = 0;
     for (const Fixture::Seg& s : f.segments)
-      blocked += segmentBlocked(s.p, s.q, *s.blockers, f.table);
+      blocked += segmentBlocked(s.p, s.q, *s.blockers, f.table, contact);
     segments += f.segments.size();
   }
   state.counters["segments_per_s"] =
