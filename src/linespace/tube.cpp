@@ -56,6 +56,7 @@
 
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "linespace/punt_resolution.h"
 
@@ -89,19 +90,22 @@ ContactCover contactCover(const ConvexPolygon& element, const BlockerGeometry& b
   const double eps = tol.length();
   for (const Vec3& v : b.vertices)
     if (std::abs(element.plane.distance(v)) > eps) return ContactCover::None;
-  // Clip the element by the inward planes of B's edges (perpendicular to B's plane).
-  std::optional<ConvexPolygon> inside = element;
-  bool all = true;
+  // The inward planes of B's edges (perpendicular to B's plane): the element is covered when all
+  // its vertices are inside every one, overlaps when clipping by all of them leaves something.
   const size_t n = b.vertices.size();
-  for (size_t k = 0; k < n && inside; ++k) {
-    const Vec3 edge = b.vertices[(k + 1) % n] - b.vertices[k];
-    const Vec3 inward = cross(b.plane.normal, edge);
-    if (!(lengthSquared(inward) > 0)) continue;
-    const Plane plane = Plane::through(b.vertices[k], inward);
-    for (const Vec3& v : element.vertices) all &= plane.distance(v) >= -eps;
-    inside = clipToFront(*inside, plane, tol);
+  std::vector<Plane> planes;
+  planes.reserve(n);
+  for (size_t k = 0; k < n; ++k) {
+    const Vec3 inward = cross(b.plane.normal, b.vertices[(k + 1) % n] - b.vertices[k]);
+    if (lengthSquared(inward) > 0) planes.push_back(Plane::through(b.vertices[k], inward));
   }
+  bool all = true;
+  for (const Plane& plane : planes)
+    for (const Vec3& v : element.vertices) all &= plane.distance(v) >= -eps;
   if (all) return ContactCover::All;
+  std::optional<ConvexPolygon> inside = element;
+  for (size_t k = 0; k < planes.size() && inside; ++k)
+    inside = clipToFront(*inside, planes[k], tol);
   return inside ? ContactCover::Part : ContactCover::None;
 }
 
