@@ -21,7 +21,7 @@ Action addPvsCommand(CLI::App& app) {
              "writes one line per leaf: L n v1 ... vn");
   struct State {
     std::string input, output;
-    bool serial = false, quiet = false, noLp = false;
+    bool serial = false, quiet = false, noLp = false, backClip = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
@@ -30,6 +30,9 @@ Action addPvsCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", s->quiet, "No progress on stderr");
   cmd->add_flag("--no-lp", s->noLp,
                 "Decide by separating-plane clipping only (faster, looser; still conservative)");
+  cmd->add_flag("--back-clip", s->backClip,
+                "Also clip the first portal by the separating planes of the last two (vis's back "
+                "clip): prunes more sequences, costs more per sequence");
   return [s] {
     const auto t0 = Clock::now();
     auto elapsed = [&] { return secondsSince(t0); };
@@ -37,6 +40,7 @@ Action addPvsCommand(CLI::App& app) {
     LeafPvsOptions options;
     options.parallel = !s->serial;
     options.stabbing.useLinearProgram = !s->noLp;
+    options.stabbing.backClip = s->backClip;
     double lastReport = 0;
     if (!s->quiet) {
       // At most one line every 2 seconds, and only on runs long enough to need it.

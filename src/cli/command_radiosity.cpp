@@ -7,8 +7,10 @@
 #include <iostream>
 #include <memory>
 
+#include "bsp/subdivision.h"
 #include "cli/commands.h"
 #include "cli/output_files.h"
+#include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
 #include "radiosity/ray_visibility.h"
@@ -16,6 +18,8 @@
 #include "render/radiosity_pictures.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/timing.h"
+#include "visibility/propagation.h"
 
 namespace gv::cli {
 
@@ -30,15 +34,24 @@ Action addRadiosityCommand(CLI::App& app) {
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
     bool noPictures = false, flat = false;
+    BspOptions bsp;  // blockers mode: the subdivision its visibility graph is computed on
   };
   auto s = std::make_shared<State>();
+  s->bsp.minCoverage = kVisibilityMinCoverage;  // the same cells as `vis`
   cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl: Kd reflectance, Ke emission; or a Quake .map, or a mesh Assimp reads)")
       ->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--visibility", s->visibility,
                   "Link visibility: rays = N jittered rays per link against the whole scene "
-                  "(Embree), all facing patch pairs linked (HSA91)")
-      ->check(CLI::IsMember({"rays"}));
+                  "(Embree), all facing patch pairs linked (HSA91); blockers = links only for "
+                  "the pairs of the conservative visibility graph (BSP + propagation), blocker "
+                  "lists reclassified in linespace on refinement, rays only for PARTIAL links and "
+                  "only against their blockers (paper §6)")
+      ->check(CLI::IsMember({"rays", "blockers"}));
+  cmd->add_option("--min-coverage", s->bsp.minCoverage,
+                  "blockers mode: BSP stop rule (see `globalvis cells --help`)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--rays", s->rays, "Visibility rays per link")->check(CLI::Range(1, 4096));
   cmd->add_option("--epsilon", s->options.epsilon,
                   "BF refinement threshold, as a fraction of the total emitted power")
@@ -69,14 +82,33 @@ Action addRadiosityCommand(CLI::App& app) {
     if (!s->quiet)
       s->options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
 
-    const EmbreeScene bvh(scene);
-    RayVisibility visibility(scene, bvh, s->rays);
-    const RadiosityResult result = solveRadiosity(scene, visibility, s->options);
+    std::unique_ptr<EmbreeScene> bvh;
+    std::unique_ptr<LinkVisibility> visibility;
+    VisibilityGraph graph;
+    double visibilitySeconds = 0;
+    if (s->visibility == "blockers") {
+      const auto t0 = Clock::now();
+      graph = computeVisibility(scene, buildSubdivision(scene, s->bsp));
+      visibilitySeconds = secondsSince(t0);
+      if (!s->quiet)
+        fmt::print(stderr, "visibility graph: {} VISIBLE + {} PARTIAL pairs, {:.2f} s\n",
+                   graph.stats.pairsVisible, graph.stats.pairsPartial, visibilitySeconds);
+      visibility = std::make_unique<BlockerVisibility>(scene, graph, s->rays);
+    } else {
+      bvh = std::make_unique<EmbreeScene>(scene);
+      visibility = std::make_unique<RayVisibility>(scene, *bvh, s->rays);
+    }
+    const RadiosityResult result = solveRadiosity(scene, *visibility, s->options);
 
     writeObj(scene, (dir / "patches.obj").string());
     writeRadiosityTxt(result, (dir / "radiosity.txt").string());
     writeElementsPly(result, (dir / "elements.ply").string());
-    writeJsonFile(radiosityStatsJson(result.stats, s->options, s->rays), dir / "stats.json");
+    nlohmann::json stats = radiosityStatsJson(result.stats, s->options, s->rays);
+    if (const auto* blockers = dynamic_cast<const BlockerVisibility*>(visibility.get())) {
+      stats["linespace"] = blockers->statsJson();
+      stats["linespace"]["visibility_graph_seconds"] = visibilitySeconds;
+    }
+    writeJsonFile(stats, dir / "stats.json");
     if (!s->noPictures) {
       const PictureStats pictures = writeRadiosityPictures(
           scene, result, dir, parsePictureOptions(s->camera, s->imageSize, s->flat));

@@ -9,12 +9,12 @@
 #include <limits>
 #include <string_view>
 
+#include "linespace/visibility_status.h"
 #include "radiosity/element_tree.h"
 
 namespace gv {
 
-/// The paper's three visibility classes of an interaction (§4.2, §6.2).
-enum class VisibilityStatus : uint8_t { Invisible = 0, Partial = 1, Visible = 2 };
+// VisibilityStatus (the paper's three classes, §4.2, §6.2) is defined by the linespace module.
 
 /// Opaque per-link state owned by a LinkVisibility (a tube: blocker list + linespace hull, a shaft
 /// candidate list, ...). kNoTube for oracles that keep none and for "no parent" (initial links).

@@ -23,7 +23,8 @@ std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, Sp
   const size_t triangles = vertices.size() - 2;
   std::vector<double> cdf(triangles + 1, 0.0);
   for (size_t k = 0; k < triangles; ++k)
-    cdf[k + 1] = cdf[k] + length(cross(vertices[k + 1] - vertices[0], vertices[k + 2] - vertices[0]));
+    cdf[k + 1] =
+        cdf[k] + length(cross(vertices[k + 1] - vertices[0], vertices[k + 2] - vertices[0]));
   const double total = cdf.back();
   if (!(total > 0)) return std::vector<Vec3>(static_cast<size_t>(count), vertices[0]);
 
@@ -49,6 +50,31 @@ std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, Sp
     points.push_back(p0 * (1.0 - a) + (p1 * (1.0 - u2) + p2 * u2) * a);
   }
   return points;
+}
+
+SampleSegments sampleSegments(const ConvexPolygon& a, const ConvexPolygon& b, int count,
+                              SplitMix64& rng) {
+  SampleSegments s;
+  s.from = stratifiedPoints(a.vertices, count, rng);
+  s.to = stratifiedPoints(b.vertices, count, rng);
+  for (size_t i = s.to.size(); i > 1; --i) std::swap(s.to[i - 1], s.to[rng.next() % i]);
+  return s;
+}
+
+double unblockedFraction(const ConvexPolygon& a, const ConvexPolygon& b, const SampleSegments& s,
+                         const std::function<bool(const Vec3&, const Vec3&)>& blocked,
+                         size_t* carrying) {
+  size_t clear = 0, carries = 0, clearCarrying = 0;
+  for (size_t i = 0; i < s.from.size(); ++i) {
+    const bool free = !blocked(s.from[i], s.to[i]);
+    const bool c = a.plane.distance(s.to[i]) > 0 && b.plane.distance(s.from[i]) > 0;
+    clear += free;
+    carries += c;
+    clearCarrying += free && c;
+  }
+  if (carrying) *carrying = carries;
+  if (carries > 0) return static_cast<double>(clearCarrying) / static_cast<double>(carries);
+  return s.from.empty() ? 1.0 : static_cast<double>(clear) / static_cast<double>(s.from.size());
 }
 
 }  // namespace gv

@@ -23,20 +23,16 @@ void RayVisibility::forEachCandidatePair(
 VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, TubeId,
                                            uint64_t seed) {
   SplitMix64 rng(seed);
-  const std::vector<Vec3> from = stratifiedPoints(a.polygon.vertices, raysPerLink_, rng);
-  std::vector<Vec3> to = stratifiedPoints(b.polygon.vertices, raysPerLink_, rng);
-  // Pair the strata of a with a random permutation of b's so that the rays do not all run
-  // parallel (stratum i to stratum i would sample only "translated" directions).
-  for (size_t i = to.size(); i > 1; --i) std::swap(to[i - 1], to[rng.next() % i]);
-  int clear = 0;
-  for (size_t i = 0; i < from.size(); ++i)
-    if (!rays_.occluded(from[i], to[i], a.patch, b.patch)) ++clear;
+  const SampleSegments samples = sampleSegments(a.polygon, b.polygon, raysPerLink_, rng);
+  const double fraction = unblockedFraction(
+      a.polygon, b.polygon, samples,
+      [&](const Vec3& p, const Vec3& q) { return rays_.occluded(p, q, a.patch, b.patch); });
   VisibilityEstimate e;
-  e.raysCast = from.size();
-  e.fraction = static_cast<double>(clear) / static_cast<double>(from.size());
-  e.status = clear == 0 ? VisibilityStatus::Invisible
-                        : (clear == static_cast<int>(from.size()) ? VisibilityStatus::Visible
-                                                                  : VisibilityStatus::Partial);
+  e.raysCast = samples.from.size();
+  e.fraction = fraction;
+  e.status = fraction == 0
+                 ? VisibilityStatus::Invisible
+                 : (fraction == 1 ? VisibilityStatus::Visible : VisibilityStatus::Partial);
   return e;
 }
 

@@ -22,7 +22,8 @@ class RayVisibility final : public LinkVisibility {
   void forEachCandidatePair(
       const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
   /// raysPerLink segments between stratified points of a and of b (paired by a random
-  /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves.
+  /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves;
+  /// the fraction counts the light-carrying (front-to-front) samples only (polygon_sampling.h).
   VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                               uint64_t seed) override;
 

@@ -1,0 +1,128 @@
+// Coverage of a tube's crossing hull by coplanar blockers. Beyond paper §6.2 (Fig. 17).
+#include "linespace/coplanar_cover.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace gv {
+namespace {
+
+struct P2 {
+  double x, y;
+};
+using Poly2 = std::vector<P2>;
+
+double cross2(const P2& o, const P2& a, const P2& b) {
+  return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+}
+
+/// Counter-clockwise convex hull (Andrew's monotone chain); fewer than 3 points when degenerate.
+Poly2 convexHull(std::vector<P2> pts) {
+  std::sort(pts.begin(), pts.end(),
+            [](const P2& a, const P2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  if (pts.size() < 3) return pts;
+  Poly2 hull(2 * pts.size());
+  size_t k = 0;
+  for (size_t i = 0; i < pts.size(); ++i) {
+    while (k >= 2 && cross2(hull[k - 2], hull[k - 1], pts[i]) <= 0) --k;
+    hull[k++] = pts[i];
+  }
+  for (size_t i = pts.size() - 1, t = k + 1; i > 0; --i) {
+    while (k >= t && cross2(hull[k - 2], hull[k - 1], pts[i - 1]) <= 0) --k;
+    hull[k++] = pts[i - 1];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+/// Twice the area over the longest edge: below `eps` the piece is thinner than the tolerance.
+bool thin(const Poly2& p, double eps) {
+  if (p.size() < 3) return true;
+  double area2 = 0, longest = 0;
+  for (size_t i = 0; i < p.size(); ++i) {
+    const P2& a = p[i];
+    const P2& b = p[(i + 1) % p.size()];
+    area2 += a.x * b.y - a.y * b.x;
+    longest = std::max(longest, std::hypot(b.x - a.x, b.y - a.y));
+  }
+  return !(std::abs(area2) > eps * longest);
+}
+
+/// The part of convex `in` where the signed distance to the directed line a → b (positive on
+/// its left) is >= 0 when `left`, <= 0 otherwise.
+Poly2 clipHalfplane(const Poly2& in, const P2& a, const P2& b, bool left) {
+  const double len = std::hypot(b.x - a.x, b.y - a.y);
+  auto dist = [&](const P2& p) {
+    const double d = cross2(a, b, p) / len;
+    return left ? d : -d;
+  };
+  Poly2 out;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const P2& p = in[i];
+    const P2& q = in[(i + 1) % in.size()];
+    const double dp = dist(p), dq = dist(q);
+    if (dp >= 0) out.push_back(p);
+    if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) {
+      const double t = dp / (dp - dq);
+      out.push_back({p.x + (q.x - p.x) * t, p.y + (q.y - p.y) * t});
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+bool coplanarBlockersCover(const Tube& tube, std::span<const BlockerGeometry* const> blockers,
+                           const Tolerance& tol) {
+  if (blockers.empty()) return false;
+  const double eps = tol.length();
+  const Plane& plane = blockers.front()->plane;
+  for (const BlockerGeometry* b : blockers)
+    for (const Vec3& v : b->vertices)
+      if (std::abs(plane.distance(v)) > eps) return false;
+  // A 2D frame of the plane.
+  const Vec3 n = plane.normal;
+  const Vec3 u = normalize(std::abs(n.x) < 0.9 ? cross(n, {1, 0, 0}) : cross(n, {0, 1, 0}));
+  const Vec3 w = cross(n, u);  // (u, w, n) right-handed: counter-clockwise seen from the front
+  const Vec3 origin = blockers.front()->vertices.front();
+  auto to2 = [&](const Vec3& p) { return P2{dot(p - origin, u), dot(p - origin, w)}; };
+
+  // Crossing points of the extremal lines.
+  std::vector<P2> crossings;
+  for (const Vec3& s : tube.source().vertices) {
+    const double ds = plane.distance(s);
+    for (const Vec3& r : tube.receiver().vertices) {
+      const double dr = plane.distance(r);
+      if (ds == dr) return false;  // both on the plane: degenerate, no conclusion
+      crossings.push_back(to2(s + (r - s) * (ds / (ds - dr))));
+    }
+  }
+  const Poly2 hull = convexHull(crossings);
+  if (hull.size() < 3) return false;
+
+  std::vector<Poly2> remaining{hull}, next;
+  for (const BlockerGeometry* b : blockers) {
+    Poly2 poly;
+    for (const Vec3& v : b->vertices) poly.push_back(to2(v));
+    if (dot(b->plane.normal, n) < 0) std::reverse(poly.begin(), poly.end());
+    next.clear();
+    for (Poly2 piece : remaining) {
+      // Subtract the convex blocker: what lies right of each edge is outside it (kept); the rest
+      // goes on to the next edge; what is left of every edge is inside (removed).
+      for (size_t k = 0; k < poly.size() && !piece.empty(); ++k) {
+        const P2& a = poly[k];
+        const P2& c = poly[(k + 1) % poly.size()];
+        Poly2 outside = clipHalfplane(piece, a, c, false);
+        if (!thin(outside, eps)) next.push_back(std::move(outside));
+        piece = clipHalfplane(piece, a, c, true);
+        if (thin(piece, eps)) piece.clear();
+      }
+    }
+    remaining.swap(next);
+    if (remaining.empty()) return true;
+  }
+  return false;
+}
+
+}  // namespace gv

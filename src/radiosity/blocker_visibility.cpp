@@ -1,0 +1,135 @@
+// `blockers` visibility mode: visibility-graph links, tubes reclassified on refinement, rays
+// against blocker lists. Paper §6.2, §6.3, §7.4.
+#include "radiosity/blocker_visibility.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "linespace/contact_blockers.h"
+#include "linespace/segment_blocking.h"
+#include "radiosity/polygon_sampling.h"
+
+namespace gv {
+namespace {
+
+constexpr TubeId kVisibleTube = 0;
+
+nlohmann::json levelJson(const LevelStats& l) {
+  const OutcomeCounts& o = l.blockers;
+  return {{"tubes", l.tubes},
+          {"visible", l.visible},
+          {"partial", l.partial},
+          {"invisible", l.invisible},
+          {"inherited_visible", l.inheritedVisible},
+          {"blocker_tests", o.total()},
+          {"occludes", o.occludes},
+          {"impinges", o.impinges},
+          {"disjoint", o.disjoint},
+          {"disjoint_by_planes", o.byPlanes},
+          {"punt", o.punt},
+          {"straddling", o.straddling},
+          {"punts_tested", o.puntsTested},
+          {"punts_removed_by_stabbing", o.puntsRemoved},
+          {"invisible_by_coplanar_blockers", o.coplanarCovers}};
+}
+
+}  // namespace
+
+BlockerVisibility::BlockerVisibility(const Scene& scene, const VisibilityGraph& graph,
+                                     int raysPerLink, TubeOptions options)
+    : scene_(scene),
+      tol_(scene.tolerance()),
+      table_(scene),
+      raysPerLink_(raysPerLink),
+      options_(options),
+      graph_(graph) {
+  if (raysPerLink < 1) throw std::invalid_argument("rays per link must be at least 1");
+  tubes_.push_back({});  // kVisibleTube
+}
+
+TubeId BlockerVisibility::addTube(const std::vector<uint32_t>& blockers) {
+  const TubeRecord rec{static_cast<uint32_t>(blockers_.size()),
+                       static_cast<uint32_t>(blockers.size())};
+  blockers_.insert(blockers_.end(), blockers.begin(), blockers.end());
+  tubes_.push_back(rec);
+  return static_cast<TubeId>(tubes_.size() - 1);
+}
+
+void BlockerVisibility::forEachCandidatePair(
+    const std::function<void(uint32_t, uint32_t, TubeId)>& visit) {
+  // Each pair's blockers: the graph's list plus the patches resting on S or R (contact covers,
+  // which propagation's "seen from S or R" lists miss; contact_blockers.h).
+  const std::vector<std::vector<uint32_t>> contacts = contactBlockers(scene_);
+  std::vector<uint32_t> list;
+  for (const Interaction& in : graph_.interactions) {
+    if (in.s >= scene_.patches.size() || in.r >= scene_.patches.size())
+      throw std::invalid_argument("visibility graph does not belong to this scene");
+    list = in.blockers;
+    for (const uint32_t end : {in.s, in.r})
+      for (const uint32_t c : contacts[end])
+        if (c != in.s && c != in.r) list.push_back(c);
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    visit(in.s, in.r, list.empty() ? kVisibleTube : addTube(list));
+  }
+}
+
+VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& b,
+                                               TubeId parentTube, uint64_t seed) {
+  if (parentTube >= tubes_.size())
+    throw std::logic_error("blockers mode: a link without a tube from this oracle");
+  LevelStats& level = stats_.level(a.depth + b.depth);
+  VisibilityEstimate e;
+  if (parentTube == kVisibleTube) {
+    ++level.inheritedVisible;
+    ++level.visible;
+    e.tube = kVisibleTube;
+    return e;
+  }
+  const TubeRecord parent = tubes_[parentTube];
+  const std::span<const uint32_t> list(blockers_.data() + parent.first, parent.count);
+  const TubeVerdict v = classifyTube(Tube(a.polygon, b.polygon), list, table_, tol_, options_);
+  ++level.tubes;
+  level.blockers += v.counts;
+  switch (v.status) {
+    case VisibilityStatus::Invisible:
+      ++level.invisible;
+      proofs_.push_back({a.patch, b.patch, a.depth, b.depth, v.proof});
+      e.status = VisibilityStatus::Invisible;
+      e.fraction = 0;
+      return e;
+    case VisibilityStatus::Visible:
+      ++level.visible;
+      e.tube = kVisibleTube;
+      return e;
+    case VisibilityStatus::Partial:
+      break;
+  }
+  ++level.partial;
+  // The sampling of `rays` mode (polygon_sampling.h), tested against the kept blockers only.
+  SplitMix64 rng(seed);
+  const SampleSegments samples = sampleSegments(a.polygon, b.polygon, raysPerLink_, rng);
+  e.status = VisibilityStatus::Partial;
+  e.raysCast = samples.from.size();
+  e.fraction = unblockedFraction(a.polygon, b.polygon, samples, [&](const Vec3& p, const Vec3& q) {
+    return segmentBlocked(p, q, v.blockers, table_, tol_.length());
+  });
+  e.tube = addTube(v.blockers);
+  return e;
+}
+
+nlohmann::json BlockerVisibility::statsJson() const {
+  nlohmann::json levels = nlohmann::json::array();
+  for (size_t l = 0; l < stats_.levels.size(); ++l) {
+    nlohmann::json j = levelJson(stats_.levels[l]);
+    j["level"] = l;
+    levels.push_back(j);
+  }
+  return {{"levels", levels},
+          {"total", levelJson(stats_.total())},
+          {"tubes_stored", tubes_.size()},
+          {"blocker_ids_stored", blockers_.size()},
+          {"invisible_proofs", proofs_.size()}};
+}
+
+}  // namespace gv
