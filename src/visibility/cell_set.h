@@ -50,6 +50,18 @@ class CellSet {
       if (words_[w] & other.words_[w]) return true;
     return false;
   }
+  /// this := the cells of [0, n) not in this.
+  void complement(size_t n) {
+    for (uint64_t& w : words_) w = ~w;
+    if (n % 64 && !words_.empty()) words_.back() &= (uint64_t{1} << (n % 64)) - 1;
+  }
+  /// Calls f(i) for every cell i in the set, ascending.
+  template <typename F>
+  void forEach(F f) const {
+    for (size_t w = 0; w < words_.size(); ++w)
+      for (uint64_t bits = words_[w]; bits; bits &= bits - 1)
+        f(w * 64 + static_cast<size_t>(std::countr_zero(bits)));
+  }
   /// Capacity in cells, rounded up to whole words.
   size_t capacity() const { return words_.size() * 64; }
 

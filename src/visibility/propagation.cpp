@@ -86,8 +86,10 @@ using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
 class PatchSearch {
  public:
   PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
-              const Placements& placements, const MightSee& might, const Tolerance& tol)
+              const Placements& placements, const MightSee& might,
+              const std::vector<CellSet>& cellReach, const Tolerance& tol)
       : sub_(sub), cellPatches_(cellPatches), placements_(placements), might_(might),
+        cellReach_(cellReach),
         stabber_(tol), flags_(placements.size(), 0), onPath_(sub.cells.size(), 0),
         unsaturatedCount_(sub.cells.size(), 0), unsaturated_(sub.cells.size()) {
     for (uint32_t c = 0; c < sub.cells.size(); ++c) {
@@ -113,7 +115,8 @@ class PatchSearch {
         for (const CellPatch& t : cellPatches_[cell])
           if (t.patch != s && t.whole && t.facesIn) result.sameCellVisible.push_back(t.patch);
       }
-      visit(cell, 0, nullptr);
+      // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
+      visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
     }
     for (uint32_t t : touched_) {
       result.seen.emplace_back(t, flags_[t]);
@@ -202,6 +205,7 @@ class PatchSearch {
   const std::vector<std::vector<CellPatch>>& cellPatches_;
   const Placements& placements_;
   const MightSee& might_;
+  const std::vector<CellSet>& cellReach_;  // per cell, the cells it may see (empty: unknown)
   PortalSequenceStabber stabber_;
   std::vector<uint8_t> flags_;
   std::vector<uint32_t> touched_, touchedCells_;
@@ -216,6 +220,7 @@ class PatchSearch {
 /// Cell-to-cell search from one source cell: counts and the Fig. 13 histogram.
 struct CellSearchResult {
   uint64_t reached = 0, tests = 0, lengthSum = 0;
+  CellSet reachedSet;  ///< the cells reached, the source included
   SequenceHistogram histogram;
   StabbingStats stabbing;
 };
@@ -236,6 +241,8 @@ class CellSearch {
     stabber_.resetStats();
     visit(source, 0, nullptr);
     result_.stabbing = stabber_.stats();
+    result_.reachedSet = unreached_;
+    result_.reachedSet.complement(sub_.cells.size());
     return result_;
   }
 
@@ -349,6 +356,17 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     st.cellStabbing += r.stabbing;
   }
   st.meanSequenceLength = st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
+  // Cell visibility is symmetric and each search is conservative: a pair found from one side
+  // only is not visible. The symmetric sets bound the patch searches (memory: cells² bits, so
+  // only where MightSee keeps its sets too).
+  std::vector<CellSet> cellReach;
+  if (might.enabled()) {
+    cellReach.resize(sub.cells.size(), CellSet(sub.cells.size()));
+    for (size_t c = 0; c < sub.cells.size(); ++c)
+      cellResults[c].reachedSet.forEach([&](size_t d) {
+        if (cellResults[d].reachedSet.contains(c)) cellReach[c].insert(d);
+      });
+  }
   st.cellSeconds = secondsSince(start);
 
   // Pieces of patches per cell, and where each patch lies.
@@ -378,7 +396,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
-      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, might, tol); },
+      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, might, cellReach, tol); },
       [&](PatchSearch& w, size_t s) {
         seen[s] = w.run(static_cast<uint32_t>(s));
         const size_t d = ++done;
