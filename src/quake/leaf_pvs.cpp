@@ -116,6 +116,13 @@ struct Searcher {
   std::vector<char> onPath;
   std::vector<CellSet> frames;  // might-see set per depth
   uint64_t sequences = 0;
+  std::vector<uint64_t> successes, failures;  // stabbing tests by sequence length (Fig. 13)
+
+  void count(size_t length, bool success) {
+    std::vector<uint64_t>& v = success ? successes : failures;
+    if (v.size() <= length) v.resize(length + 1, 0);
+    ++v[length];
+  }
 
   CellSet& frame(size_t depth) {
     while (frames.size() <= depth) frames.emplace_back(visible.capacity());
@@ -130,6 +137,7 @@ struct Searcher {
     stabber.clear();
     stabber.push(p.winding);  // one portal is always stabbed (never Blocked)
     ++sequences;
+    count(1, true);
     onPath[p.from] = onPath[p.to] = 1;
     frame(1) = *might[pi];
     recurse(p.to, 1);
@@ -145,7 +153,9 @@ struct Searcher {
       // Nothing this branch might reach is unseen: it cannot change the answer.
       if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], *might[ri], visible)) continue;
       ++sequences;
-      if (stabber.push(r.winding) == StabbingResult::Blocked) continue;
+      const bool stabbed = stabber.push(r.winding) != StabbingResult::Blocked;
+      count(depth + 1, stabbed);
+      if (!stabbed) continue;
       visible.insert(r.to);
       onPath[r.to] = 1;
       recurse(r.to, depth + 1);
@@ -232,6 +242,11 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   for (const Searcher& s : searchers) {
     result.stabbing += s.stabber.stats();
     result.sequencesSearched += s.sequences;
+    for (auto [from, to] : {std::pair{&s.successes, &result.successesByLength},
+                            std::pair{&s.failures, &result.failuresByLength}}) {
+      if (to->size() < from->size()) to->resize(from->size(), 0);
+      for (size_t k = 0; k < from->size(); ++k) (*to)[k] += (*from)[k];
+    }
   }
   // A cell sees itself and what its portals see.
   std::vector<CellSet> seen(cells, CellSet(cells));
@@ -269,6 +284,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
     total += static_cast<double>(result.visibleLeafs[l].size());
   }
   result.meanLeafsVisible = prt.leafCount ? total / static_cast<double>(prt.leafCount) : 0;
+  result.portalFlow = std::move(portalVis);
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "quake/prt_file.h"
+#include "visibility/cell_set.h"
 #include "visibility/stabbing.h"
 
 namespace gv {
@@ -34,6 +35,12 @@ struct LeafPvsResult {
   double meanClustersMightSee = 0;
   StabbingStats stabbing;
   uint64_t sequencesSearched = 0;  ///< portal sequences pushed by the searches
+  /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
+  std::vector<uint64_t> successesByLength, failuresByLength;
+  /// Per directed portal (2i: portal i from clusterA into clusterB; 2i+1: the way back), the
+  /// clusters reached by the stabbable sequences it starts (before symmetrisation): a superset of
+  /// where any sightline continuing through it can go.
+  std::vector<CellSet> portalFlow;
   double floodSeconds = 0, searchSeconds = 0;
 };
 

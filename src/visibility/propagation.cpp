@@ -18,6 +18,7 @@
 #include <chrono>
 #include <deque>
 #include <mutex>
+#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -25,10 +26,15 @@
 #include <tbb/task_arena.h>
 
 #include "visibility/hull_overlap.h"
+#include "quake/leaf_pvs.h"
 #include "visibility/might_see.h"
 
 namespace gv {
 namespace {
+
+/// Above this many bits of per-directed-portal cell sets (2 x portals x cells; 2^32 bits =
+/// 512 MiB) the leaf-PVS cell search is not used.
+constexpr double kMaxPortalFlowBits = 4294967296.0;
 
 
 /// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
@@ -80,13 +86,24 @@ struct PatchSearchResult {
 
 using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
 
+/// Where a sightline may go after crossing a portal (a superset): the leaf-PVS flow of that
+/// directed portal (the cells its stabbable sequences reach) when it was computed, else the
+/// might-see flood.
+struct PortalReach {
+  const std::vector<CellSet>* flow = nullptr;  ///< leaf_pvs.h numbering: 2i = into portal i's front
+  const MightSee* might = nullptr;
+  const CellSet& through(uint32_t pid, bool forward) const {
+    return flow ? (*flow)[2 * pid + (forward ? 0 : 1)] : might->through(pid, forward);
+  }
+};
+
 /// Per-thread state of the patch-level search. Beyond the stabbing test it prunes a branch when
 /// every cell the branch might still reach (MightSee) holds only patches already seen in every
 /// way they can be seen: the search's only output is those flags, so nothing is lost.
 class PatchSearch {
  public:
   PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
-              const Placements& placements, const MightSee& might,
+              const Placements& placements, const PortalReach& might,
               const std::vector<CellSet>& cellReach, const Tolerance& tol)
       : sub_(sub), cellPatches_(cellPatches), placements_(placements), might_(might),
         cellReach_(cellReach),
@@ -204,7 +221,7 @@ class PatchSearch {
   const Subdivision& sub_;
   const std::vector<std::vector<CellPatch>>& cellPatches_;
   const Placements& placements_;
-  const MightSee& might_;
+  const PortalReach& might_;
   const std::vector<CellSet>& cellReach_;  // per cell, the cells it may see (empty: unknown)
   PortalSequenceStabber stabber_;
   std::vector<uint8_t> flags_;
@@ -229,7 +246,7 @@ struct CellSearchResult {
 /// reach is already known to be visible from the source.
 class CellSearch {
  public:
-  CellSearch(const Subdivision& sub, const MightSee& might, const Tolerance& tol)
+  CellSearch(const Subdivision& sub, const PortalReach& might, const Tolerance& tol)
       : sub_(sub), might_(might), stabber_(tol), onPath_(sub.cells.size(), 0) {}
 
   CellSearchResult run(uint32_t source) {
@@ -282,7 +299,7 @@ class CellSearch {
   }
 
   const Subdivision& sub_;
-  const MightSee& might_;
+  const PortalReach& might_;
   PortalSequenceStabber stabber_;
   std::vector<uint8_t> onPath_;
   CellSet unreached_;
@@ -340,32 +357,78 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   st.portals = sub.portals.size();
   st.threads = threads;
 
-  const MightSee might(sub, tol);
-
-  // Cell to cell (§4.1).
-  std::vector<CellSearchResult> cellResults(sub.cells.size());
-  parallelFor(
-      sub.cells.size(), threads, [&] { return CellSearch(sub, might, tol); },
-      [&](CellSearch& w, size_t c) { cellResults[c] = w.run(static_cast<uint32_t>(c)); });
-  uint64_t lengthSum = 0;
-  for (const CellSearchResult& r : cellResults) {
-    st.cellPairsVisible += r.reached;
-    st.cellStabbingTests += r.tests;
-    lengthSum += r.lengthSum;
-    st.cellHistogram += r.histogram;
-    st.cellStabbing += r.stabbing;
-  }
-  st.meanSequenceLength = st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
-  // Cell visibility is symmetric and each search is conservative: a pair found from one side
-  // only is not visible. The symmetric sets bound the patch searches (memory: cells² bits, so
-  // only where MightSee keeps its sets too).
-  std::vector<CellSet> cellReach;
-  if (might.enabled()) {
+  // Cell to cell (§4.1). Where the sets fit (portals × cells bits), the Quake-style search of
+  // leaf_pvs.h over our cells: one search per directed portal, in waves that let finished
+  // portals' results narrow later searches; its per-portal results (flows) then bound the patch
+  // searches far more tightly than the might-see flood. Otherwise a search per cell, pruned by
+  // the flood.
+  std::vector<CellSet> cellReach;  // per cell, the cells it may see (symmetric), if known
+  std::vector<CellSet> flow;
+  std::optional<MightSee> flood;
+  PortalReach reach;
+  const double setBits = 2.0 * double(sub.portals.size()) * double(sub.cells.size());
+  if (setBits <= kMaxPortalFlowBits) {
+    PrtFile graph;
+    graph.leafCount = graph.clusterCount = sub.cells.size();
+    graph.leafCluster.resize(sub.cells.size());
+    graph.clusterLeafs.resize(sub.cells.size());
+    for (size_t c = 0; c < sub.cells.size(); ++c) {
+      graph.leafCluster[c] = static_cast<int>(c);
+      graph.clusterLeafs[c] = {static_cast<int>(c)};
+    }
+    for (const Portal& p : sub.portals)  // the polygon's normal points from back into front
+      graph.portals.push_back({p.polygon.vertices, static_cast<int>(p.back),
+                               static_cast<int>(p.front), 0});
+    LeafPvsOptions pvsOptions;
+    pvsOptions.parallel = threads > 1;
+    tbb::task_arena arena(threads);
+    LeafPvsResult pvs;
+    arena.execute([&] { pvs = computeLeafPvs(graph, pvsOptions); });
     cellReach.resize(sub.cells.size(), CellSet(sub.cells.size()));
     for (size_t c = 0; c < sub.cells.size(); ++c)
-      cellResults[c].reachedSet.forEach([&](size_t d) {
-        if (cellResults[d].reachedSet.contains(c)) cellReach[c].insert(d);
-      });
+      for (uint32_t d : pvs.visibleLeafs[c]) cellReach[c].insert(d);
+    uint64_t lengthSum = 0;
+    for (size_t k = 0; k < pvs.successesByLength.size() || k < pvs.failuresByLength.size(); ++k) {
+      const uint64_t ok = k < pvs.successesByLength.size() ? pvs.successesByLength[k] : 0;
+      const uint64_t no = k < pvs.failuresByLength.size() ? pvs.failuresByLength[k] : 0;
+      for (uint64_t i = 0; i < ok; ++i) st.cellHistogram.add(k, true);
+      for (uint64_t i = 0; i < no; ++i) st.cellHistogram.add(k, false);
+      lengthSum += k * (ok + no);
+      st.cellStabbingTests += ok + no;
+    }
+    for (size_t c = 0; c < sub.cells.size(); ++c) st.cellPairsVisible += pvs.visibleLeafs[c].size();
+    st.meanSequenceLength =
+        st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
+    st.cellStabbing = pvs.stabbing;
+    flow = std::move(pvs.portalFlow);
+    reach.flow = &flow;
+  } else {
+    flood.emplace(sub, tol);
+    reach.might = &*flood;
+    std::vector<CellSearchResult> cellResults(sub.cells.size());
+    parallelFor(
+        sub.cells.size(), threads, [&] { return CellSearch(sub, reach, tol); },
+        [&](CellSearch& w, size_t c) { cellResults[c] = w.run(static_cast<uint32_t>(c)); });
+    uint64_t lengthSum = 0;
+    for (const CellSearchResult& r : cellResults) {
+      st.cellPairsVisible += r.reached;
+      st.cellStabbingTests += r.tests;
+      lengthSum += r.lengthSum;
+      st.cellHistogram += r.histogram;
+      st.cellStabbing += r.stabbing;
+    }
+    st.meanSequenceLength =
+        st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
+    // Cell visibility is symmetric and each search is conservative: a pair found from one side
+    // only is not visible. The symmetric sets bound the patch searches (memory: cells² bits, so
+    // only where the flood keeps its sets too).
+    if (flood->enabled()) {
+      cellReach.resize(sub.cells.size(), CellSet(sub.cells.size()));
+      for (size_t c = 0; c < sub.cells.size(); ++c)
+        cellResults[c].reachedSet.forEach([&](size_t d) {
+          if (cellResults[d].reachedSet.contains(c)) cellReach[c].insert(d);
+        });
+    }
   }
   st.cellSeconds = secondsSince(start);
 
@@ -396,7 +459,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
-      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, might, cellReach, tol); },
+      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, reach, cellReach, tol); },
       [&](PatchSearch& w, size_t s) {
         seen[s] = w.run(static_cast<uint32_t>(s));
         const size_t d = ++done;
