@@ -36,8 +36,10 @@ step "visibility and blocker lists (paper §4-§5, §7.2-7.3)"
 step "independent check of the visibility by ray casting"
 "$gv" verify "$out/vis" --rays 100000 --segments 20000 | tee "$out/vis/verify.txt"
 
-step "hierarchical radiosity (rays visibility, HSA91)"
-"$gv" radiosity "$out/office.obj" -o "$out/radiosity" --quiet
+# The paper's mode: links only for the pairs the visibility found, blockers kept in linespace
+# tubes, rays only for PARTIAL links and only against their blockers (paper §6).
+step "hierarchical radiosity (blockers visibility, paper §6 + HSA91)"
+"$gv" radiosity "$out/office.obj" -o "$out/radiosity" --visibility blockers --quiet
 
 finish_step
 printf '{\n  "steps": [%s\n  ]\n}\n' "$timings" > "$out/timings.json"
@@ -51,5 +53,5 @@ printf '\n== done ==\n'
 echo "Outputs in $out/: report.html (the paper's §7 figures beside this run's; open it in a browser),"
 echo "viewer.html (interactive: cells, portals, links, tubes and blockers), office.obj,"
 echo "cells/ (cells.obj, portals.obj, stats.json), vis/ (patches.obj, visibility.txt, stats.json),"
-echo "radiosity/ (radiosity.txt, elements.ply, stats.json), timings.json."
-echo "Not built yet: linespace tubes and the paper's blocker-list radiosity mode (see README.md, Status)."
+echo "radiosity/ (radiosity.txt, elements.ply, stats.json, render.png and the Fig. 14 link pictures),"
+echo "timings.json."
