@@ -12,6 +12,7 @@
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
 #include "radiosity/ray_visibility.h"
+#include "radiosity/shaft_visibility.h"
 #include "raycast/embree_scene.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
@@ -20,8 +21,9 @@ namespace gv::cli {
 
 Action addRadiosityCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "radiosity", "Hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991); write "
-                   "patches.obj, radiosity.txt, stats.json and elements.ply into a directory");
+      "radiosity",
+      "Hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991); write "
+      "patches.obj, radiosity.txt, stats.json and elements.ply into a directory");
   struct State {
     std::string scene, output, visibility = "rays";
     int rays = 16;
@@ -34,8 +36,10 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--visibility", s->visibility,
                   "Link visibility: rays = N jittered rays per link against the whole scene "
-                  "(Embree), all facing patch pairs linked (HSA91)")
-      ->check(CLI::IsMember({"rays"}));
+                  "(Embree), all facing patch pairs linked (HSA91); shaft = the same rays tested "
+                  "only against the patches meeting the hull of the two elements (Haines & "
+                  "Wallace)")
+      ->check(CLI::IsMember({"rays", "shaft"}));
   cmd->add_option("--rays", s->rays, "Visibility rays per link")->check(CLI::Range(1, 4096));
   cmd->add_option("--epsilon", s->options.epsilon,
                   "BF refinement threshold, as a fraction of the total emitted power")
@@ -58,8 +62,12 @@ Action addRadiosityCommand(CLI::App& app) {
       s->options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
 
     const EmbreeScene bvh(scene);
-    RayVisibility visibility(scene, bvh, s->rays);
-    const RadiosityResult result = solveRadiosity(scene, visibility, s->options);
+    std::unique_ptr<LinkVisibility> visibility;
+    if (s->visibility == "shaft")
+      visibility = std::make_unique<ShaftVisibility>(scene, s->rays);
+    else
+      visibility = std::make_unique<RayVisibility>(scene, bvh, s->rays);
+    const RadiosityResult result = solveRadiosity(scene, *visibility, s->options);
 
     writeObj(scene, (dir / "patches.obj").string());
     writeRadiosityTxt(result, (dir / "radiosity.txt").string());

@@ -1,7 +1,6 @@
 // Hierarchical radiosity: initial links, BF refinement, Jacobi gather with push-pull. HSA91 §4,
 // paper §6 and §7.4 (Table 1 statistics per refinement round).
 #include "radiosity/hierarchical_radiosity.h"
-#include "util/timing.h"
 
 #include <fmt/core.h>
 
@@ -12,20 +11,34 @@
 #include <utility>
 
 #include "radiosity/polygon_sampling.h"
+#include "util/timing.h"
 
 namespace gv {
 namespace {
 
-Rgb operator+(const Rgb& x, const Rgb& y) { return {x.r + y.r, x.g + y.g, x.b + y.b}; }
-Rgb operator*(const Rgb& x, const Rgb& y) { return {x.r * y.r, x.g * y.g, x.b * y.b}; }
-Rgb operator*(double s, const Rgb& x) { return {s * x.r, s * x.g, s * x.b}; }
-Rgb& operator+=(Rgb& x, const Rgb& y) { return x = x + y; }
-double maxChannel(const Rgb& x) { return std::max({x.r, x.g, x.b}); }
+Rgb operator+(const Rgb& x, const Rgb& y) {
+  return {x.r + y.r, x.g + y.g, x.b + y.b};
+}
+Rgb operator*(const Rgb& x, const Rgb& y) {
+  return {x.r * y.r, x.g * y.g, x.b * y.b};
+}
+Rgb operator*(double s, const Rgb& x) {
+  return {s * x.r, s * x.g, s * x.b};
+}
+Rgb& operator+=(Rgb& x, const Rgb& y) {
+  return x = x + y;
+}
+double maxChannel(const Rgb& x) {
+  return std::max({x.r, x.g, x.b});
+}
 
 class Solver {
  public:
   Solver(const Scene& scene, LinkVisibility& visibility, const RadiosityOptions& options)
-      : scene_(scene), visibility_(visibility), options_(options), tol_(scene.tolerance()),
+      : scene_(scene),
+        visibility_(visibility),
+        options_(options),
+        tol_(scene.tolerance()),
         tree_(scene) {
     emission_.reserve(scene.patches.size());
     reflectance_.reserve(scene.patches.size());
@@ -112,25 +125,44 @@ class Solver {
     // domain's size relative to the distance; reciprocity gives the other direction.
     double fab, variationA, variationB;
     if (eb.area < ea.area) {
-      const FormFactorEstimate e = formFactorEstimate(eb.polygon, ea.polygon, tol_, options_.formFactor);
+      const FormFactorEstimate e =
+          formFactorEstimate(eb.polygon, ea.polygon, tol_, options_.formFactor);
       fab = e.ab * eb.area / ea.area;
       variationA = e.variationB;
       variationB = e.variationA;
     } else {
-      const FormFactorEstimate e = formFactorEstimate(ea.polygon, eb.polygon, tol_, options_.formFactor);
+      const FormFactorEstimate e =
+          formFactorEstimate(ea.polygon, eb.polygon, tol_, options_.formFactor);
       fab = e.ab;
       variationA = e.variationA;
       variationB = e.variationB;
     }
     if (!(fab > 0)) return std::nullopt;
-    const VisibilityEstimate v = visibility_.estimate(ea, eb, parentTube, mixSeed(options_.seed, a, b));
+    const VisibilityEstimate v =
+        visibility_.estimate(ea, eb, parentTube, mixSeed(options_.seed, a, b));
     current_->rays += v.raysCast;
     switch (v.status) {
-      case VisibilityStatus::Invisible: ++current_->created.invisible; return std::nullopt;
-      case VisibilityStatus::Partial: ++current_->created.partial; break;
-      case VisibilityStatus::Visible: ++current_->created.visible; break;
+      case VisibilityStatus::Invisible:
+        ++current_->created.invisible;
+        // Proven (no rays needed): no light passes. Sampled: light narrower than the samples
+        // may pass; the link is kept, carrying nothing, so that refinement can look again
+        // (dropping it would bias the solution dark, by p (1 - p)^N per link).
+        if (v.raysCast == 0) return std::nullopt;
+        break;
+      case VisibilityStatus::Partial:
+        ++current_->created.partial;
+        break;
+      case VisibilityStatus::Visible:
+        ++current_->created.visible;
+        break;
     }
     Link link;
+    // What fraction of each element lies in front of the other's plane (exchanges light).
+    if (const std::optional<ExchangingParts> parts =
+            exchangingParts(ea.polygon, eb.polygon, tol_)) {
+      link.frontA = std::min(1.0, parts->a.area() / ea.area);
+      link.frontB = std::min(1.0, parts->b.area() / eb.area);
+    }
     link.a = a;
     link.b = b;
     link.unoccludedAB = fab;
@@ -141,6 +173,7 @@ class Solver {
     link.formFactorBA = fab * ea.area / eb.area * v.fraction;
     link.status = v.status;
     link.tube = v.tube;
+    link.samples = static_cast<uint32_t>(std::min<uint64_t>(v.raysCast, UINT32_MAX));
     return link;
   }
 
@@ -148,17 +181,37 @@ class Solver {
   /// wrong in either direction. Partial links count their whole unoccluded form factor: their
   /// visibility is a sample, and where it varies across the receiver is unknown.
   struct LinkError {
-    double intoA = 0, intoB = 0;
-    double worst() const { return std::max(intoA, intoB); }
+    double intoA = 0, intoB = 0;  ///< the form factor's spread over the receiver, or visibility
+    double clipA = 0, clipB = 0;  ///< the source's mean standing for a partly cut-off source
+    double worst() const { return std::max(intoA + clipA, intoB + clipB); }
   };
   LinkError linkError(const Link& l) const {
     const Element& ea = tree_[l.a];
     const Element& eb = tree_[l.b];
-    const bool visible = l.status == VisibilityStatus::Visible;
-    const double boundA = visible ? l.variationA : l.unoccludedAB;
-    const double boundB = visible ? l.variationB : l.unoccludedAB * ea.area / eb.area;
-    return {maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * boundA,
-            maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * boundB};
+    // A sampled visibility of 0 or 1 is uncertain by about 1 / (N + 2) of the unoccluded form
+    // factor (Laplace's rule of succession: the expected fraction missed by N samples that all
+    // agree); without that term, links that happened to sample all clear or all blocked stop
+    // refining, and the solution is biased towards whichever extreme is more common.
+    const double uncertain = l.samples == 0 ? 0.0 : 1.0 / (static_cast<double>(l.samples) + 2.0);
+    const double ba = l.unoccludedAB, bb = l.unoccludedAB * ea.area / eb.area;
+    double boundA = ba, boundB = bb;
+    if (l.status == VisibilityStatus::Visible) {
+      boundA = std::max(l.variationA, uncertain * ba);
+      boundB = std::max(l.variationB, uncertain * bb);
+    } else if (l.status == VisibilityStatus::Invisible) {
+      boundA = uncertain * ba;
+      boundB = uncertain * bb;
+    }
+    LinkError e;
+    e.intoA = maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * boundA;
+    e.intoB = maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * boundB;
+    // A source partly behind the receiver's plane sends its mean radiosity, but only its front
+    // part sends at all, and that part's radiosity can differ wholly from the rest (the floor
+    // around and under a block seen from the block's side): up to B_src times the fraction cut
+    // off. Only cutting the source helps.
+    e.clipA = maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * ba * (1 - l.frontB);
+    e.clipB = maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * bb * (1 - l.frontA);
+    return e;
   }
 
   bool canSplit(uint32_t e) const { return tree_[e].area >= minArea_; }
@@ -172,6 +225,24 @@ class Solver {
   void refineLinks(RefinementStats& round) {
     std::vector<Link> pending = std::move(links_);
     links_.clear();
+    refinePending(pending, round);
+    while (pushInconsistentLinks(pending, round)) refinePending(pending, round);
+  }
+
+  /// Splits `l` by its element `split` (which has children) and queues the children's links.
+  void replaceBy(const Link& l, uint32_t split, std::vector<Link>& pending,
+                 RefinementStats& round) {
+    ++round.linksRefined;
+    const Element& parent = tree_[split];
+    const uint32_t first = parent.firstChild, count = parent.childCount;
+    for (uint32_t c = first; c < first + count; ++c) {
+      std::optional<Link> child =
+          split == l.a ? makeLink(c, l.b, l.tube) : makeLink(l.a, c, l.tube);
+      if (child) pending.push_back(*child);
+    }
+  }
+
+  void refinePending(std::vector<Link>& pending, RefinementStats& round) {
     while (!pending.empty()) {
       const Link l = pending.back();
       pending.pop_back();
@@ -180,23 +251,99 @@ class Solver {
         links_.push_back(l);
         continue;
       }
-      const bool preferA = l.status == VisibilityStatus::Visible
-                               ? error.intoA >= error.intoB
-                               : tree_[l.a].area >= tree_[l.b].area;
+      bool preferA = l.status == VisibilityStatus::Visible ? error.intoA >= error.intoB
+                                                           : tree_[l.a].area >= tree_[l.b].area;
+      // A cut-off source term dominating: cut that source (b for clipA, a for clipB).
+      const double clip = std::max(error.clipA, error.clipB);
+      if (clip > std::max(error.intoA, error.intoB)) preferA = error.clipB >= error.clipA;
       uint32_t split = preferA ? l.a : l.b;
       if (!canSplit(split)) split = preferA ? l.b : l.a;
       if (!canSplit(split) || !subdivide(split)) {
         links_.push_back(l);
         continue;
       }
-      ++round.linksRefined;
-      const Element& parent = tree_[split];
-      const uint32_t first = parent.firstChild, count = parent.childCount;
-      for (uint32_t c = first; c < first + count; ++c) {
-        std::optional<Link> child = split == l.a ? makeLink(c, l.b, l.tube) : makeLink(l.a, c, l.tube);
-        if (child) pending.push_back(*child);
+      replaceBy(l, split, pending, round);
+    }
+  }
+
+  /// Receiver-side consistency (RadiosityOptions::relativeEpsilon). The links ending at a
+  /// subdivided element hand each child the element's mean form factor; the child's own mean
+  /// differs. Per child, the signed sum of those differences (estimated by the point form factor
+  /// at the child's centroid), weighted by ρ B_src visibility, as a fraction of the element's
+  /// radiosity, must stay within relativeEpsilon; otherwise the links adding most to the worst
+  /// child's error are refined into the existing children until it fits. Errors of opposite
+  /// sign cancel (a child nearer one source is farther from another), so only coherent ones (a
+  /// corner child under coarse links to far walls) cost links. Moves the links to `pending`;
+  /// returns whether any moved.
+  bool pushInconsistentLinks(std::vector<Link>& pending, RefinementStats& round) {
+    std::vector<std::vector<uint32_t>> ends(tree_.size());
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      const Link& l = links_[i];
+      if (!tree_[l.a].isLeaf()) ends[l.a].push_back(i);
+      if (!tree_[l.b].isLeaf()) ends[l.b].push_back(i);
+    }
+    std::vector<uint32_t> splitBy(links_.size(), kNoElement);
+    bool any = false;
+    std::vector<double> contribution, deviation;
+    std::vector<uint32_t> order;
+    for (uint32_t e = 0; e < ends.size(); ++e) {
+      const std::vector<uint32_t>& list = ends[e];
+      const double be = maxChannel(radiosity_[e]);
+      if (list.empty() || !(be > 0)) continue;
+      const Element& el = tree_[e];
+      const uint32_t first = el.firstChild, k = el.childCount;
+      const double budget = options_.relativeEpsilon;
+      contribution.assign(list.size() * k, 0.0);
+      deviation.assign(k, 0.0);
+      for (size_t j = 0; j < list.size(); ++j) {
+        const Link& l = links_[list[j]];
+        const bool atA = l.a == e;
+        const uint32_t other = atA ? l.b : l.a;
+        const double mean =
+            atA ? l.unoccludedAB : l.unoccludedAB * tree_[l.a].area / tree_[l.b].area;
+        const double weight =
+            maxChannel(reflectance_[el.patch] * radiosity_[other]) * l.visibility / be;
+        for (uint32_t c = 0; c < k; ++c) {
+          const double own = pointFormFactorToFront(tree_[first + c].polygon.centroid(),
+                                                    el.polygon.plane, tree_[other].polygon, tol_);
+          deviation[c] += contribution[j * k + c] = weight * (mean - own);
+        }
+      }
+      for (uint32_t pass = 0; pass <= k; ++pass) {
+        uint32_t worst = 0;
+        for (uint32_t c = 1; c < k; ++c)
+          if (std::abs(deviation[c]) > std::abs(deviation[worst])) worst = c;
+        if (std::abs(deviation[worst]) <= budget) break;
+        const double sign = deviation[worst] > 0 ? 1.0 : -1.0;
+        order.clear();
+        for (uint32_t j = 0; j < list.size(); ++j)
+          if (splitBy[list[j]] != e && sign * contribution[j * k + worst] > 0) order.push_back(j);
+        std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+          const double cx = sign * contribution[x * k + worst],
+                       cy = sign * contribution[y * k + worst];
+          return cx != cy ? cx > cy : x < y;
+        });
+        for (uint32_t j : order) {
+          if (std::abs(deviation[worst]) <= budget) break;
+          for (uint32_t c = 0; c < k; ++c) deviation[c] -= contribution[j * k + c];
+          if (splitBy[list[j]] == kNoElement) {
+            splitBy[list[j]] = e;
+            any = true;
+          }
+        }
       }
     }
+    if (!any) return false;
+    std::vector<Link> kept;
+    kept.reserve(links_.size());
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      if (splitBy[i] == kNoElement)
+        kept.push_back(links_[i]);
+      else
+        replaceBy(links_[i], splitBy[i], pending, round);
+    }
+    links_ = std::move(kept);
+    return true;
   }
 
   bool subdivide(uint32_t e) {
@@ -253,8 +400,8 @@ class Solver {
       b = (1.0 / area) * b;
     }
     const Rgb old = radiosity_[e];
-    maxChange_ = std::max({maxChange_, std::abs(b.r - old.r), std::abs(b.g - old.g),
-                           std::abs(b.b - old.b)});
+    maxChange_ =
+        std::max({maxChange_, std::abs(b.r - old.r), std::abs(b.g - old.g), std::abs(b.b - old.b)});
     maxRadiosity_ = std::max(maxRadiosity_, maxChannel(b));
     radiosity_[e] = b;
     return b;
@@ -265,19 +412,24 @@ class Solver {
     round.elements = tree_.size();
     round.leaves = tree_.leafCount();
     for (const Link& l : links_) {
-      if (l.status == VisibilityStatus::Visible) ++round.links.visible;
-      else ++round.links.partial;
+      if (l.status == VisibilityStatus::Visible)
+        ++round.links.visible;
+      else if (l.status == VisibilityStatus::Partial)
+        ++round.links.partial;
+      else
+        ++round.links.invisible;
     }
   }
 
   void report(const RefinementStats& r) const {
     if (!options_.progress) return;
-    options_.progress(fmt::format(
-        "radiosity round {}: {} links refined, {} links (V {} / P {}), created V {} P {} I {}, "
-        "{} elements, {} rays, refine {:.2f} s, solve {} sweeps {:.2f} s",
-        r.round, r.linksRefined, r.links.total(), r.links.visible, r.links.partial,
-        r.created.visible, r.created.partial, r.created.invisible, r.elements, r.rays,
-        r.refineSeconds, r.sweeps, r.solveSeconds));
+    options_.progress(
+        fmt::format("radiosity round {}: {} links refined, {} links (V {} / P {} / I {}), created "
+                    "V {} P {} I {}, "
+                    "{} elements, {} rays, refine {:.2f} s, solve {} sweeps {:.2f} s",
+                    r.round, r.linksRefined, r.links.total(), r.links.visible, r.links.partial,
+                    r.links.invisible, r.created.visible, r.created.partial, r.created.invisible,
+                    r.elements, r.rays, r.refineSeconds, r.sweeps, r.solveSeconds));
   }
 
   const Scene& scene_;

@@ -16,6 +16,15 @@ uint64_t mixSeed(uint64_t a, uint64_t b, uint64_t c) {
   return g3.next();
 }
 
+double kernelWeight(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
+  const Vec3 d = y - x;
+  const double r2 = dot(d, d);
+  if (!(r2 > 0)) return 0.0;
+  const double cx = dot(nx, d), cy = -dot(ny, d);
+  if (!(cx > 0) || !(cy > 0)) return 0.0;
+  return cx * cy / (r2 * r2);
+}
+
 std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng) {
   std::vector<Vec3> points;
   if (count <= 0 || vertices.size() < 3) return points;
@@ -23,7 +32,8 @@ std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, Sp
   const size_t triangles = vertices.size() - 2;
   std::vector<double> cdf(triangles + 1, 0.0);
   for (size_t k = 0; k < triangles; ++k)
-    cdf[k + 1] = cdf[k] + length(cross(vertices[k + 1] - vertices[0], vertices[k + 2] - vertices[0]));
+    cdf[k + 1] =
+        cdf[k] + length(cross(vertices[k + 1] - vertices[0], vertices[k + 2] - vertices[0]));
   const double total = cdf.back();
   if (!(total > 0)) return std::vector<Vec3>(static_cast<size_t>(count), vertices[0]);
 

@@ -38,4 +38,12 @@ uint64_t mixSeed(uint64_t a, uint64_t b, uint64_t c = 0);
 /// every polygon). The points are strictly inside the polygon with probability 1.
 std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng);
 
+/// The weight of a visibility sample between `x` on a surface with unit normal `nx` and `y` with
+/// unit normal `ny`: the form-factor kernel cos θx cos θy / r² (0 when either faces away). The
+/// visibility of a link is the kernel-weighted mean of the samples, Σ K V / Σ K, not the plain
+/// fraction: near parts of two elements, which carry most of the light, are usually less occluded
+/// than far ones, and the plain fraction then makes a solution too dark (measured 2-3 % on the
+/// office's walls).
+double kernelWeight(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny);
+
 }  // namespace gv

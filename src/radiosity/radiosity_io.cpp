@@ -35,7 +35,9 @@ nlohmann::json countsJson(const LinkCounts& c) {
           {"invisible_percent", percent(c.invisible, total)}};
 }
 
-double maxChannel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
+double maxChannel(const Rgb& c) {
+  return std::max({c.r, c.g, c.b});
+}
 
 }  // namespace
 
@@ -147,13 +149,17 @@ void writeElementsPly(const RadiosityResult& result, const std::string& path, do
   try {
     auto out = fmt::output_file(path);
     out.print("ply\nformat ascii 1.0\n");
-    out.print("comment globalvis radiosity: leaf elements; colours = radiosity / {:.6g}, gamma "
-              "1/{}\n", white, kDisplayGamma);
+    out.print(
+        "comment globalvis radiosity: leaf elements; colours = radiosity / {:.6g}, gamma "
+        "1/{}\n",
+        white, kDisplayGamma);
     out.print("element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
               vertices.size());
     out.print("property uchar red\nproperty uchar green\nproperty uchar blue\n");
-    out.print("property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n");
-    out.print("element face {}\nproperty list uchar int vertex_indices\nend_header\n", faces.size());
+    out.print(
+        "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n");
+    out.print("element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+              faces.size());
     for (const Vertex& v : vertices) {
       const Rgb c{v.sum.r / v.weight, v.sum.g / v.weight, v.sum.b / v.weight};
       out.print("{:.9g} {:.9g} {:.9g} {} {} {} {:.6g} {:.6g} {:.6g}\n", v.p.x, v.p.y, v.p.z,

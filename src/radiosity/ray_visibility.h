@@ -19,9 +19,9 @@ class RayVisibility final : public LinkVisibility {
 
   std::string_view name() const override { return "rays"; }
   /// All pairs a < b of the scene's patches (n(n-1)/2).
-  void forEachCandidatePair(
-      const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
-  /// raysPerLink segments between stratified points of a and of b (paired by a random
+  void forEachCandidatePair(const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
+  /// raysPerLink segments between stratified points of the parts of a and b that exchange light
+  /// (exchangingParts) (paired by a random
   /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves.
   VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                               uint64_t seed) override;
@@ -30,6 +30,7 @@ class RayVisibility final : public LinkVisibility {
   const Scene& scene_;
   const EmbreeScene& rays_;
   int raysPerLink_;
+  Tolerance tol_;
 };
 
 }  // namespace gv
