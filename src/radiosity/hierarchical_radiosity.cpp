@@ -32,6 +32,9 @@ double maxChannel(const Rgb& x) {
   return std::max({x.r, x.g, x.b});
 }
 
+/// The rule of three: N agreeing samples bound the missed fraction by ~3 / N (95 %).
+constexpr double kSampleBound = 3.0;
+
 class Solver {
  public:
   Solver(const Scene& scene, LinkVisibility& visibility, const RadiosityOptions& options)
@@ -188,11 +191,13 @@ class Solver {
   LinkError linkError(const Link& l) const {
     const Element& ea = tree_[l.a];
     const Element& eb = tree_[l.b];
-    // A sampled visibility of 0 or 1 is uncertain by about 1 / (N + 2) of the unoccluded form
-    // factor (Laplace's rule of succession: the expected fraction missed by N samples that all
-    // agree); without that term, links that happened to sample all clear or all blocked stop
-    // refining, and the solution is biased towards whichever extreme is more common.
-    const double uncertain = l.samples == 0 ? 0.0 : 1.0 / (static_cast<double>(l.samples) + 2.0);
+    // A sampled visibility of 0 or 1 is uncertain: after N samples that all agree, the fraction
+    // missed can still be up to ~3 / N (the "rule of three", a 95 % bound). Without this term,
+    // links that happened to sample all clear or all blocked stop refining, and the solution is
+    // biased towards whichever extreme is more common (a desk under a ceiling patch that spans
+    // every room: 16 rays all land in other rooms, and the desk never sees its own ceiling).
+    const double uncertain =
+        l.samples == 0 ? 0.0 : std::min(1.0, kSampleBound / static_cast<double>(l.samples));
     const double ba = l.unoccludedAB, bb = l.unoccludedAB * ea.area / eb.area;
     double boundA = ba, boundB = bb;
     if (l.status == VisibilityStatus::Visible) {

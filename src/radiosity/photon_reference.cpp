@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "radiosity/polygon_sampling.h"
+#include "radiosity/ray_visibility.h"
 
 namespace gv {
 namespace {
@@ -79,6 +80,7 @@ PhotonResult photonReference(const Scene& scene, const EmbreeScene& rays,
   if (emitters.empty()) return result;
   const double totalWeight = cdf.back();
 
+  const double offset = kRayEndOffset * scene.bounds().diagonal();
   const auto batches = static_cast<size_t>(options.batches);
   const uint64_t perBatch = std::max<uint64_t>(1, options.photons / batches);
   std::vector<Batch> out(batches);
@@ -99,10 +101,21 @@ PhotonResult photonReference(const Scene& scene, const EmbreeScene& rays,
       for (int bounce = 0; bounce < options.maxBounces; ++bounce) {
         const Vec3 dir = cosineDirection(scene.patches[patch].polygon.plane.normal, rng);
         ++batch.rays;
-        const std::optional<RayHit> hit = rays.firstHit(origin, dir, 1e300, patch);
+        // Start a little along (see kRayEndOffset): coplanar neighbours of the origin patch.
+        const Vec3 start = origin + dir * offset;
+        std::optional<RayHit> hit = rays.firstHit(start, dir, 1e300, patch);
         if (!hit) break;
+        if (dot(dir, scene.patches[hit->patch].polygon.plane.normal) >= 0) {
+          // A back: but a front-facing patch may lie in the same place (two faces back to
+          // back); single precision picks either. Prefer a front within the offset.
+          const std::optional<RayHit> other =
+              rays.firstHit(start, dir, hit->t + 2 * offset, hit->patch);
+          if (!other || other->t < hit->t - 2 * offset ||
+              dot(dir, scene.patches[other->patch].polygon.plane.normal) >= 0)
+            break;  // arrived on the back: absorbed
+          hit = other;
+        }
         const Patch& hp = scene.patches[hit->patch];
-        if (dot(dir, hp.polygon.plane.normal) >= 0) break;  // arrived on the back: absorbed
         const Rgb& rho = scene.materials[hp.material].reflectance;
         const Rgb refl{power.r * rho.r, power.g * rho.g, power.b * rho.b};
         Rgb& tally = batch.reflected[hit->patch];
@@ -110,7 +123,7 @@ PhotonResult photonReference(const Scene& scene, const EmbreeScene& rays,
         const double survive = std::min(1.0, std::max({rho.r, rho.g, rho.b}));
         if (!(survive > 0) || rng.uniform() >= survive) break;
         power = {refl.r / survive, refl.g / survive, refl.b / survive};
-        origin = origin + dir * hit->t;
+        origin = start + dir * hit->t;
         patch = hit->patch;
       }
     }

@@ -10,7 +10,11 @@
 namespace gv {
 
 RayVisibility::RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink)
-    : scene_(scene), rays_(rays), raysPerLink_(raysPerLink), tol_(scene.tolerance()) {
+    : scene_(scene),
+      rays_(rays),
+      raysPerLink_(raysPerLink),
+      tol_(scene.tolerance()),
+      endOffset_(kRayEndOffset * scene.bounds().diagonal()) {
   if (raysPerLink < 1) throw std::invalid_argument("rays per link must be at least 1");
 }
 
@@ -37,7 +41,10 @@ VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, T
   for (size_t i = 0; i < from.size(); ++i) {
     const double w = kernelWeight(from[i], a.polygon.plane.normal, to[i], b.polygon.plane.normal);
     weightAll += w;
-    if (!rays_.occluded(from[i], to[i], a.patch, b.patch)) {
+    const Vec3 d = to[i] - from[i];
+    const double len = length(d);
+    const double pull = len > 0 ? std::min(0.01, endOffset_ / len) : 0.0;
+    if (!rays_.occluded(from[i] + d * pull, to[i] - d * pull, a.patch, b.patch)) {
       ++clear;
       weightClear += w;
     }

@@ -27,7 +27,7 @@ FurnaceRun runFurnace(double rho) {
   SceneBuilder builder(scene, Tolerance{4.0});
   testing::addInwardBox(builder, {0, 0, 0}, {1, 2, 1.5}, m, 2);
   const EmbreeScene bvh(scene);
-  RayVisibility visibility(scene, bvh, 4);
+  RayVisibility visibility(scene, bvh, 16);
   return {solveRadiosity(scene, visibility), 1.0 / (1.0 - rho)};
 }
 
