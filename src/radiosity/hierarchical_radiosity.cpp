@@ -51,6 +51,7 @@ class Solver {
       reflectance_.push_back(m.reflectance);
     }
     radiosity_ = emission_;
+    for (const Rgb& e : emission_) brightest_.push_back(maxChannel(e));
     gathered_.assign(scene.patches.size(), Rgb{});
     double area = 0;
     for (size_t k = 0; k < scene.patches.size(); ++k) {
@@ -184,9 +185,10 @@ class Solver {
   /// wrong in either direction. Partial links count their whole unoccluded form factor: their
   /// visibility is a sample, and where it varies across the receiver is unknown.
   struct LinkError {
-    double intoA = 0, intoB = 0;  ///< the form factor's spread over the receiver, or visibility
-    double clipA = 0, clipB = 0;  ///< the source's mean standing for a partly cut-off source
-    double worst() const { return std::max(intoA + clipA, intoB + clipB); }
+    double intoA = 0, intoB = 0;      ///< the form factor's spread over the receiver, or visibility
+    double sourceA = 0, sourceB = 0;  ///< the source's radiosity varying under the kernel
+    double clipA = 0, clipB = 0;      ///< the source's mean standing for a partly cut-off source
+    double worst() const { return std::max(intoA + sourceA + clipA, intoB + sourceB + clipB); }
   };
   LinkError linkError(const Link& l) const {
     const Element& ea = tree_[l.a];
@@ -208,15 +210,41 @@ class Solver {
       boundB = uncertain * bb;
     }
     LinkError e;
-    e.intoA = maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * boundA;
-    e.intoB = maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * boundB;
+    // A partly visible source sends the mean radiosity of all of it, but only its visible part
+    // counts, and that part may be the bright one (the floor of a lit room inside a floor patch
+    // that spans dark corridors too): bound the source by its brightest leaf.
+    const bool exact = l.status == VisibilityStatus::Visible;
+    const double sourceB = exact ? maxChannel(radiosity_[l.b]) : brightest_[l.b];
+    const double sourceA = exact ? maxChannel(radiosity_[l.a]) : brightest_[l.a];
+    e.intoA = maxChannel(reflectance_[ea.patch]) * sourceB * ea.area * boundA;
+    e.intoB = maxChannel(reflectance_[eb.patch]) * sourceA * eb.area * boundB;
     // A source partly behind the receiver's plane sends its mean radiosity, but only its front
     // part sends at all, and that part's radiosity can differ wholly from the rest (the floor
     // around and under a block seen from the block's side): up to B_src times the fraction cut
     // off. Only cutting the source helps.
+    // The source side: a gathers b's mean radiosity, but the kernel weights b's parts unequally
+    // (by up to variationB / F_ba relative); where b's radiosity varies by ΔB over its children,
+    // a misses up to ρ_a A_a F_ab (variationB / F_ba) ΔB = ρ_a A_b variationB ΔB (the ceiling
+    // over a lit room gathering a floor element whose bright part lies right below). Only
+    // cutting b helps, and b's children exist, so it costs links only.
+    e.sourceA = maxChannel(reflectance_[ea.patch]) * eb.area * l.variationB * radiosityRange(l.b);
+    e.sourceB = maxChannel(reflectance_[eb.patch]) * ea.area * l.variationA * radiosityRange(l.a);
     e.clipA = maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * ba * (1 - l.frontB);
     e.clipB = maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * bb * (1 - l.frontA);
     return e;
+  }
+
+  /// How much an element's radiosity varies: the range over its children; 0 for a leaf (the
+  /// solver knows nothing finer).
+  double radiosityRange(uint32_t e) const {
+    const Element& el = tree_[e];
+    if (el.isLeaf()) return 0.0;
+    double lo = INFINITY, hi = -INFINITY;
+    for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {
+      lo = std::min(lo, maxChannel(radiosity_[c]));
+      hi = std::max(hi, maxChannel(radiosity_[c]));
+    }
+    return hi - lo;
   }
 
   bool canSplit(uint32_t e) const { return tree_[e].area >= minArea_; }
@@ -258,9 +286,10 @@ class Solver {
       }
       bool preferA = l.status == VisibilityStatus::Visible ? error.intoA >= error.intoB
                                                            : tree_[l.a].area >= tree_[l.b].area;
-      // A cut-off source term dominating: cut that source (b for clipA, a for clipB).
-      const double clip = std::max(error.clipA, error.clipB);
-      if (clip > std::max(error.intoA, error.intoB)) preferA = error.clipB >= error.clipA;
+      // A source term dominating: cut that source (b for clipA / sourceA, a for B's).
+      const double sourceOfA = error.clipA + error.sourceA, sourceOfB = error.clipB + error.sourceB;
+      if (std::max(sourceOfA, sourceOfB) > std::max(error.intoA, error.intoB))
+        preferA = sourceOfB >= sourceOfA;
       uint32_t split = preferA ? l.a : l.b;
       if (!canSplit(split)) split = preferA ? l.b : l.a;
       if (!canSplit(split) || !subdivide(split)) {
@@ -358,6 +387,7 @@ class Solver {
       // New elements start with their parent's radiosity (what push-pull would give them).
       const Rgb inherited = radiosity_[e];
       radiosity_.resize(tree_.size(), inherited);
+      brightest_.resize(tree_.size(), brightest_[e]);
       gathered_.resize(tree_.size(), Rgb{});
     }
     return true;
@@ -394,16 +424,20 @@ class Solver {
     const Element& el = tree_[e];
     const Rgb total = down + gathered_[e];
     Rgb b;
+    double brightest = 0;
     if (el.isLeaf()) {
       b = emission_[el.patch] + reflectance_[el.patch] * total;
+      brightest = maxChannel(b);
     } else {
       double area = 0;
       for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {
         b += tree_[c].area * pushPull(c, total);
         area += tree_[c].area;
+        brightest = std::max(brightest, brightest_[c]);
       }
       b = (1.0 / area) * b;
     }
+    brightest_[e] = brightest;
     const Rgb old = radiosity_[e];
     maxChange_ =
         std::max({maxChange_, std::abs(b.r - old.r), std::abs(b.g - old.g), std::abs(b.b - old.b)});
@@ -445,6 +479,7 @@ class Solver {
   std::vector<Link> links_;
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
+  std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)
   double minArea_ = 0, threshold_ = 0;
   double maxChange_ = 0, maxRadiosity_ = 0;
   RadiosityStats stats_;
