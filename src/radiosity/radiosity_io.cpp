@@ -77,6 +77,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
           {"options",
            {{"rays_per_link", raysPerLink},
             {"epsilon", options.epsilon},
+            {"relative_epsilon", options.relativeEpsilon},
             {"min_area", options.minArea},
             {"tolerance", options.tolerance},
             {"max_refinements", options.maxRefinements},
