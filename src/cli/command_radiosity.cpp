@@ -14,6 +14,7 @@
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
 #include "radiosity/ray_visibility.h"
+#include "radiosity/shaft_visibility.h"
 #include "raycast/embree_scene.h"
 #include "render/radiosity_pictures.h"
 #include "scene/input_error.h"
@@ -25,8 +26,9 @@ namespace gv::cli {
 
 Action addRadiosityCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "radiosity", "Hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991); write "
-                   "patches.obj, radiosity.txt, stats.json and elements.ply into a directory");
+      "radiosity",
+      "Hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991); write "
+      "patches.obj, radiosity.txt, stats.json and elements.ply into a directory");
   struct State {
     std::string scene, output, visibility = "rays";
     int rays = 16;
@@ -43,11 +45,13 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--visibility", s->visibility,
                   "Link visibility: rays = N jittered rays per link against the whole scene "
-                  "(Embree), all facing patch pairs linked (HSA91); blockers = links only for "
-                  "the pairs of the conservative visibility graph (BSP + propagation), blocker "
-                  "lists reclassified in linespace on refinement, rays only for PARTIAL links and "
-                  "only against their blockers (paper §6)")
-      ->check(CLI::IsMember({"rays", "blockers"}));
+                  "(Embree), all facing patch pairs linked (HSA91); shaft = the same rays tested "
+                  "only against the patches meeting the hull of the two elements (Haines & "
+                  "Wallace); blockers = links only for the pairs of the conservative visibility "
+                  "graph (BSP + propagation), blocker lists reclassified in linespace on "
+                  "refinement, rays only for PARTIAL links and only against their blockers "
+                  "(paper §6)")
+      ->check(CLI::IsMember({"rays", "shaft", "blockers"}));
   cmd->add_option("--min-coverage", s->bsp.minCoverage,
                   "blockers mode: BSP stop rule (see `globalvis cells --help`)")
       ->capture_default_str()
@@ -94,6 +98,8 @@ Action addRadiosityCommand(CLI::App& app) {
         fmt::print(stderr, "visibility graph: {} VISIBLE + {} PARTIAL pairs, {:.2f} s\n",
                    graph.stats.pairsVisible, graph.stats.pairsPartial, visibilitySeconds);
       visibility = std::make_unique<BlockerVisibility>(scene, graph, s->rays);
+    } else if (s->visibility == "shaft") {
+      visibility = std::make_unique<ShaftVisibility>(scene, s->rays);
     } else {
       bvh = std::make_unique<EmbreeScene>(scene);
       visibility = std::make_unique<RayVisibility>(scene, *bvh, s->rays);

@@ -7,7 +7,7 @@
 
 #include "linespace/contact_blockers.h"
 #include "linespace/segment_blocking.h"
-#include "radiosity/polygon_sampling.h"
+#include "radiosity/link_sampling.h"
 
 namespace gv {
 namespace {
@@ -106,14 +106,20 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
       break;
   }
   ++level.partial;
-  // The sampling of `rays` mode (polygon_sampling.h), tested against the kept blockers only.
+  // The sampling of `rays` mode (link_sampling.h), tested against the kept blockers only.
   SplitMix64 rng(seed);
-  const SampleSegments samples = sampleSegments(a.polygon, b.polygon, raysPerLink_, rng);
+  const std::optional<SampledVisibility> sampled = sampleLinkVisibility(
+      a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
+        return segmentBlocked(p, q, v.blockers, table_, tol_.length());
+      });
+  if (!sampled) {  // no part of one faces the other: they exchange no light (a proof)
+    e.status = VisibilityStatus::Invisible;
+    e.fraction = 0;
+    return e;
+  }
   e.status = VisibilityStatus::Partial;
-  e.raysCast = samples.from.size();
-  e.fraction = unblockedFraction(a.polygon, b.polygon, samples, [&](const Vec3& p, const Vec3& q) {
-    return segmentBlocked(p, q, v.blockers, table_, tol_.length());
-  });
+  e.raysCast = sampled->samples;
+  e.fraction = sampled->fraction;
   e.tube = addTube(v.blockers);
   return e;
 }

@@ -46,7 +46,8 @@ std::vector<ConvexPolygon> splitElementPolygon(const ConvexPolygon& polygon) {
     }
   } else {
     const Vec3 c = polygon.centroid();
-    for (size_t i = 0; i < v.size(); ++i) out.push_back(piece({c, v[i], v[(i + 1) % v.size()]}, plane));
+    for (size_t i = 0; i < v.size(); ++i)
+      out.push_back(piece({c, v[i], v[(i + 1) % v.size()]}, plane));
   }
   return out;
 }
@@ -83,8 +84,8 @@ bool ElementTree::subdivide(uint32_t id) {
 }
 
 size_t ElementTree::leafCount() const {
-  return static_cast<size_t>(
-      std::count_if(elements_.begin(), elements_.end(), [](const Element& e) { return e.isLeaf(); }));
+  return static_cast<size_t>(std::count_if(elements_.begin(), elements_.end(),
+                                           [](const Element& e) { return e.isLeaf(); }));
 }
 
 }  // namespace gv

@@ -20,8 +20,8 @@ inline constexpr uint32_t kNoElement = std::numeric_limits<uint32_t>::max();
 struct Element {
   ConvexPolygon polygon;  ///< in the patch's plane, same orientation
   double area = 0;
-  uint32_t patch = 0;               ///< the patch it lies on
-  uint32_t parent = kNoElement;     ///< kNoElement for a patch (root)
+  uint32_t patch = 0;                ///< the patch it lies on
+  uint32_t parent = kNoElement;      ///< kNoElement for a patch (root)
   uint32_t firstChild = kNoElement;  ///< children are contiguous: firstChild .. firstChild+count-1
   uint32_t childCount = 0;
   uint32_t depth = 0;  ///< 0 for a patch

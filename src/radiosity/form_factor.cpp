@@ -26,8 +26,12 @@ TriangleRule makeRadonRule() {
   const double a2 = (6.0 + s) / 21.0, b2 = (9.0 - 2.0 * s) / 21.0, w2 = (155.0 + s) / 1200.0;
   TriangleRule r{};
   r.points = {{{1.0 / 3, 1.0 / 3, 1.0 / 3},
-               {a1, a1, b1}, {a1, b1, a1}, {b1, a1, a1},
-               {a2, a2, b2}, {a2, b2, a2}, {b2, a2, a2}}};
+               {a1, a1, b1},
+               {a1, b1, a1},
+               {b1, a1, a1},
+               {a2, a2, b2},
+               {a2, b2, a2},
+               {b2, a2, a2}}};
   r.weights = {9.0 / 40, w1, w1, w1, w2, w2, w2};
   return r;
 }
@@ -69,8 +73,8 @@ class ReceiverIntegrator {
   /// midpoint children and recurse where they disagree. `budget` is the absolute error allowed.
   double adaptive(const Triangle& t, double coarse, double budget, int depth) const {
     const Vec3 m01 = (t.p0 + t.p1) * 0.5, m12 = (t.p1 + t.p2) * 0.5, m20 = (t.p2 + t.p0) * 0.5;
-    const std::array<Triangle, 4> kids{{{t.p0, m01, m20}, {m01, t.p1, m12},
-                                        {m20, m12, t.p2}, {m01, m12, m20}}};
+    const std::array<Triangle, 4> kids{
+        {{t.p0, m01, m20}, {m01, t.p1, m12}, {m20, m12, t.p2}, {m01, m12, m20}}};
     std::array<double, 4> values{};
     double fine = 0;
     for (int k = 0; k < 4; ++k) fine += values[k] = rule(kids[k]);
@@ -135,12 +139,38 @@ double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Ve
   return std::min(1.0, std::abs(sum) / (2.0 * std::numbers::pi));
 }
 
+double pointFormFactorToFront(const Vec3& x, const Plane& plane, const ConvexPolygon& source,
+                              const Tolerance& tol) {
+  if (whollyInFront(source, plane, tol.length()))
+    return pointToPolygonFormFactor(x, plane.normal, source.vertices);
+  const std::optional<ConvexPolygon> front = clipToFront(source, plane, tol);
+  return front ? pointToPolygonFormFactor(x, plane.normal, front->vertices) : 0.0;
+}
+
 bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps) {
   auto anyInFront = [eps](const ConvexPolygon& p, const Plane& plane) {
     return std::any_of(p.vertices.begin(), p.vertices.end(),
                        [&](const Vec3& v) { return plane.distance(v) > eps; });
   };
   return anyInFront(b, a.plane) && anyInFront(a, b.plane);
+}
+
+std::optional<ExchangingParts> exchangingParts(const ConvexPolygon& a, const ConvexPolygon& b,
+                                               const Tolerance& tol) {
+  const double eps = tol.length();
+  if (!canFace(a, b, eps)) return std::nullopt;
+  ExchangingParts parts{a, b};
+  if (!whollyInFront(b, a.plane, eps)) {
+    std::optional<ConvexPolygon> front = clipToFront(b, a.plane, tol);
+    if (!front) return std::nullopt;
+    parts.b = std::move(*front);
+  }
+  if (!whollyInFront(a, b.plane, eps)) {
+    std::optional<ConvexPolygon> front = clipToFront(a, b.plane, tol);
+    if (!front) return std::nullopt;
+    parts.a = std::move(*front);
+  }
+  return parts;
 }
 
 double formFactor(const ConvexPolygon& a, const ConvexPolygon& b, const Tolerance& tol,
@@ -186,8 +216,8 @@ FormFactorEstimate formFactorEstimate(const ConvexPolygon& a, const ConvexPolygo
   if (!farField && receiverArea > 0) {
     double refined = 0;
     for (size_t k = 0; k < fan.size(); ++k) {
-      const double budget = options.relativeTolerance * std::abs(total) *
-                            (fan[k].area() / receiverArea);
+      const double budget =
+          options.relativeTolerance * std::abs(total) * (fan[k].area() / receiverArea);
       refined += integrator.adaptive(fan[k], coarse[k], budget, 1);
     }
     total = refined;

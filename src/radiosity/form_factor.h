@@ -4,6 +4,7 @@
 // (HSA91 §3; paper §6: the "energetic interaction" of a link, before visibility).
 #pragma once
 
+#include <optional>
 #include <span>
 
 #include "geometry/convex_polygon.h"
@@ -19,9 +20,25 @@ namespace gv {
 /// callers clip first (see formFactor). In [0, 1].
 double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Vec3> vertices);
 
+/// pointToPolygonFormFactor from `x` on `plane` (normal = the plane's) to the part of `source`
+/// in front of the plane (clipped when it straddles it; 0 when none is in front).
+double pointFormFactorToFront(const Vec3& x, const Plane& plane, const ConvexPolygon& source,
+                              const Tolerance& tol);
+
 /// Whether two one-sided elements can exchange light at all: false when either lies wholly behind
 /// or on the other's plane (within `eps`), so coplanar elements never face each other.
 bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps);
+
+/// The parts of one-sided polygons `a` and `b` that exchange light: a clipped to the front of b's
+/// plane and b to the front of a's (each unchanged when wholly in front). What formFactor
+/// integrates over, and where visibility samples must lie: a sample behind the other's plane
+/// stands for light that the form factor does not carry, and it is often blocked (the floor
+/// under a block, seen from the block's side). nullopt when they cannot face.
+struct ExchangingParts {
+  ConvexPolygon a, b;
+};
+std::optional<ExchangingParts> exchangingParts(const ConvexPolygon& a, const ConvexPolygon& b,
+                                               const Tolerance& tol);
 
 /// Accuracy knobs of formFactor. The defaults reach ~1e-4 relative error on Howell's catalogue
 /// cases, including rectangles that share an edge (where the integrand has a logarithmic

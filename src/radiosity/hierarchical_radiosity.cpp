@@ -1,7 +1,6 @@
 // Hierarchical radiosity: initial links, BF refinement, Jacobi gather with push-pull. HSA91 §4,
 // paper §6 and §7.4 (Table 1 statistics per refinement round).
 #include "radiosity/hierarchical_radiosity.h"
-#include "util/timing.h"
 
 #include <fmt/core.h>
 
@@ -12,20 +11,37 @@
 #include <utility>
 
 #include "radiosity/polygon_sampling.h"
+#include "util/timing.h"
 
 namespace gv {
 namespace {
 
-Rgb operator+(const Rgb& x, const Rgb& y) { return {x.r + y.r, x.g + y.g, x.b + y.b}; }
-Rgb operator*(const Rgb& x, const Rgb& y) { return {x.r * y.r, x.g * y.g, x.b * y.b}; }
-Rgb operator*(double s, const Rgb& x) { return {s * x.r, s * x.g, s * x.b}; }
-Rgb& operator+=(Rgb& x, const Rgb& y) { return x = x + y; }
-double maxChannel(const Rgb& x) { return std::max({x.r, x.g, x.b}); }
+Rgb operator+(const Rgb& x, const Rgb& y) {
+  return {x.r + y.r, x.g + y.g, x.b + y.b};
+}
+Rgb operator*(const Rgb& x, const Rgb& y) {
+  return {x.r * y.r, x.g * y.g, x.b * y.b};
+}
+Rgb operator*(double s, const Rgb& x) {
+  return {s * x.r, s * x.g, s * x.b};
+}
+Rgb& operator+=(Rgb& x, const Rgb& y) {
+  return x = x + y;
+}
+double maxChannel(const Rgb& x) {
+  return std::max({x.r, x.g, x.b});
+}
+
+/// The rule of three: N agreeing samples bound the missed fraction by ~3 / N (95 %).
+constexpr double kSampleBound = 3.0;
 
 class Solver {
  public:
   Solver(const Scene& scene, LinkVisibility& visibility, const RadiosityOptions& options)
-      : scene_(scene), visibility_(visibility), options_(options), tol_(scene.tolerance()),
+      : scene_(scene),
+        visibility_(visibility),
+        options_(options),
+        tol_(scene.tolerance()),
         tree_(scene) {
     emission_.reserve(scene.patches.size());
     reflectance_.reserve(scene.patches.size());
@@ -35,6 +51,7 @@ class Solver {
       reflectance_.push_back(m.reflectance);
     }
     radiosity_ = emission_;
+    for (const Rgb& e : emission_) brightest_.push_back(maxChannel(e));
     gathered_.assign(scene.patches.size(), Rgb{});
     double area = 0;
     for (size_t k = 0; k < scene.patches.size(); ++k) {
@@ -112,25 +129,44 @@ class Solver {
     // domain's size relative to the distance; reciprocity gives the other direction.
     double fab, variationA, variationB;
     if (eb.area < ea.area) {
-      const FormFactorEstimate e = formFactorEstimate(eb.polygon, ea.polygon, tol_, options_.formFactor);
+      const FormFactorEstimate e =
+          formFactorEstimate(eb.polygon, ea.polygon, tol_, options_.formFactor);
       fab = e.ab * eb.area / ea.area;
       variationA = e.variationB;
       variationB = e.variationA;
     } else {
-      const FormFactorEstimate e = formFactorEstimate(ea.polygon, eb.polygon, tol_, options_.formFactor);
+      const FormFactorEstimate e =
+          formFactorEstimate(ea.polygon, eb.polygon, tol_, options_.formFactor);
       fab = e.ab;
       variationA = e.variationA;
       variationB = e.variationB;
     }
     if (!(fab > 0)) return std::nullopt;
-    const VisibilityEstimate v = visibility_.estimate(ea, eb, parentTube, mixSeed(options_.seed, a, b));
+    const VisibilityEstimate v =
+        visibility_.estimate(ea, eb, parentTube, mixSeed(options_.seed, a, b));
     current_->rays += v.raysCast;
     switch (v.status) {
-      case VisibilityStatus::Invisible: ++current_->created.invisible; return std::nullopt;
-      case VisibilityStatus::Partial: ++current_->created.partial; break;
-      case VisibilityStatus::Visible: ++current_->created.visible; break;
+      case VisibilityStatus::Invisible:
+        ++current_->created.invisible;
+        // Proven (no rays needed): no light passes. Sampled: light narrower than the samples
+        // may pass; the link is kept, carrying nothing, so that refinement can look again
+        // (dropping it would bias the solution dark, by p (1 - p)^N per link).
+        if (v.raysCast == 0) return std::nullopt;
+        break;
+      case VisibilityStatus::Partial:
+        ++current_->created.partial;
+        break;
+      case VisibilityStatus::Visible:
+        ++current_->created.visible;
+        break;
     }
     Link link;
+    // What fraction of each element lies in front of the other's plane (exchanges light).
+    if (const std::optional<ExchangingParts> parts =
+            exchangingParts(ea.polygon, eb.polygon, tol_)) {
+      link.frontA = std::min(1.0, parts->a.area() / ea.area);
+      link.frontB = std::min(1.0, parts->b.area() / eb.area);
+    }
     link.a = a;
     link.b = b;
     link.unoccludedAB = fab;
@@ -141,6 +177,7 @@ class Solver {
     link.formFactorBA = fab * ea.area / eb.area * v.fraction;
     link.status = v.status;
     link.tube = v.tube;
+    link.samples = static_cast<uint32_t>(std::min<uint64_t>(v.raysCast, UINT32_MAX));
     return link;
   }
 
@@ -148,17 +185,66 @@ class Solver {
   /// wrong in either direction. Partial links count their whole unoccluded form factor: their
   /// visibility is a sample, and where it varies across the receiver is unknown.
   struct LinkError {
-    double intoA = 0, intoB = 0;
-    double worst() const { return std::max(intoA, intoB); }
+    double intoA = 0, intoB = 0;      ///< the form factor's spread over the receiver, or visibility
+    double sourceA = 0, sourceB = 0;  ///< the source's radiosity varying under the kernel
+    double clipA = 0, clipB = 0;      ///< the source's mean standing for a partly cut-off source
+    double worst() const { return std::max(intoA + sourceA + clipA, intoB + sourceB + clipB); }
   };
   LinkError linkError(const Link& l) const {
     const Element& ea = tree_[l.a];
     const Element& eb = tree_[l.b];
-    const bool visible = l.status == VisibilityStatus::Visible;
-    const double boundA = visible ? l.variationA : l.unoccludedAB;
-    const double boundB = visible ? l.variationB : l.unoccludedAB * ea.area / eb.area;
-    return {maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * boundA,
-            maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * boundB};
+    // A sampled visibility of 0 or 1 is uncertain: after N samples that all agree, the fraction
+    // missed can still be up to ~3 / N (the "rule of three", a 95 % bound). Without this term,
+    // links that happened to sample all clear or all blocked stop refining, and the solution is
+    // biased towards whichever extreme is more common (a desk under a ceiling patch that spans
+    // every room: 16 rays all land in other rooms, and the desk never sees its own ceiling).
+    const double uncertain =
+        l.samples == 0 ? 0.0 : std::min(1.0, kSampleBound / static_cast<double>(l.samples));
+    const double ba = l.unoccludedAB, bb = l.unoccludedAB * ea.area / eb.area;
+    double boundA = ba, boundB = bb;
+    if (l.status == VisibilityStatus::Visible) {
+      boundA = std::max(l.variationA, uncertain * ba);
+      boundB = std::max(l.variationB, uncertain * bb);
+    } else if (l.status == VisibilityStatus::Invisible) {
+      boundA = uncertain * ba;
+      boundB = uncertain * bb;
+    }
+    LinkError e;
+    // A partly visible source sends the mean radiosity of all of it, but only its visible part
+    // counts, and that part may be the bright one (the floor of a lit room inside a floor patch
+    // that spans dark corridors too): bound the source by its brightest leaf.
+    const bool exact = l.status == VisibilityStatus::Visible;
+    const double sourceB = exact ? maxChannel(radiosity_[l.b]) : brightest_[l.b];
+    const double sourceA = exact ? maxChannel(radiosity_[l.a]) : brightest_[l.a];
+    e.intoA = maxChannel(reflectance_[ea.patch]) * sourceB * ea.area * boundA;
+    e.intoB = maxChannel(reflectance_[eb.patch]) * sourceA * eb.area * boundB;
+    // A source partly behind the receiver's plane sends its mean radiosity, but only its front
+    // part sends at all, and that part's radiosity can differ wholly from the rest (the floor
+    // around and under a block seen from the block's side): up to B_src times the fraction cut
+    // off. Only cutting the source helps.
+    // The source side: a gathers b's mean radiosity, but the kernel weights b's parts unequally
+    // (by up to variationB / F_ba relative); where b's radiosity varies by ΔB over its children,
+    // a misses up to ρ_a A_a F_ab (variationB / F_ba) ΔB = ρ_a A_b variationB ΔB (the ceiling
+    // over a lit room gathering a floor element whose bright part lies right below). Only
+    // cutting b helps, and b's children exist, so it costs links only.
+    e.sourceA = maxChannel(reflectance_[ea.patch]) * eb.area * l.variationB * radiosityRange(l.b);
+    e.sourceB = maxChannel(reflectance_[eb.patch]) * ea.area * l.variationA * radiosityRange(l.a);
+    e.clipA = maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * ba * (1 - l.frontB);
+    e.clipB = maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * bb * (1 - l.frontA);
+    return e;
+  }
+
+  /// How much an element's radiosity varies: the range over its children; 0 for a leaf (the
+  /// solver knows nothing finer).
+  double radiosityRange(uint32_t e) const {
+    const Element& el = tree_[e];
+    if (el.isLeaf()) return 0.0;
+    double lo = INFINITY, hi = -INFINITY;
+    for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {
+      lo = std::min(lo, maxChannel(radiosity_[c]));
+      hi = std::max(hi, maxChannel(radiosity_[c]));
+    }
+    return hi - lo;
   }
 
   bool canSplit(uint32_t e) const { return tree_[e].area >= minArea_; }
@@ -172,6 +258,24 @@ class Solver {
   void refineLinks(RefinementStats& round) {
     std::vector<Link> pending = std::move(links_);
     links_.clear();
+    refinePending(pending, round);
+    while (pushInconsistentLinks(pending, round)) refinePending(pending, round);
+  }
+
+  /// Splits `l` by its element `split` (which has children) and queues the children's links.
+  void replaceBy(const Link& l, uint32_t split, std::vector<Link>& pending,
+                 RefinementStats& round) {
+    ++round.linksRefined;
+    const Element& parent = tree_[split];
+    const uint32_t first = parent.firstChild, count = parent.childCount;
+    for (uint32_t c = first; c < first + count; ++c) {
+      std::optional<Link> child =
+          split == l.a ? makeLink(c, l.b, l.tube) : makeLink(l.a, c, l.tube);
+      if (child) pending.push_back(*child);
+    }
+  }
+
+  void refinePending(std::vector<Link>& pending, RefinementStats& round) {
     while (!pending.empty()) {
       const Link l = pending.back();
       pending.pop_back();
@@ -180,23 +284,100 @@ class Solver {
         links_.push_back(l);
         continue;
       }
-      const bool preferA = l.status == VisibilityStatus::Visible
-                               ? error.intoA >= error.intoB
-                               : tree_[l.a].area >= tree_[l.b].area;
+      bool preferA = l.status == VisibilityStatus::Visible ? error.intoA >= error.intoB
+                                                           : tree_[l.a].area >= tree_[l.b].area;
+      // A source term dominating: cut that source (b for clipA / sourceA, a for B's).
+      const double sourceOfA = error.clipA + error.sourceA, sourceOfB = error.clipB + error.sourceB;
+      if (std::max(sourceOfA, sourceOfB) > std::max(error.intoA, error.intoB))
+        preferA = sourceOfB >= sourceOfA;
       uint32_t split = preferA ? l.a : l.b;
       if (!canSplit(split)) split = preferA ? l.b : l.a;
       if (!canSplit(split) || !subdivide(split)) {
         links_.push_back(l);
         continue;
       }
-      ++round.linksRefined;
-      const Element& parent = tree_[split];
-      const uint32_t first = parent.firstChild, count = parent.childCount;
-      for (uint32_t c = first; c < first + count; ++c) {
-        std::optional<Link> child = split == l.a ? makeLink(c, l.b, l.tube) : makeLink(l.a, c, l.tube);
-        if (child) pending.push_back(*child);
+      replaceBy(l, split, pending, round);
+    }
+  }
+
+  /// Receiver-side consistency (RadiosityOptions::relativeEpsilon). The links ending at a
+  /// subdivided element hand each child the element's mean form factor; the child's own mean
+  /// differs. Per child, the signed sum of those differences (estimated by the point form factor
+  /// at the child's centroid), weighted by ρ B_src visibility, as a fraction of the element's
+  /// radiosity, must stay within relativeEpsilon; otherwise the links adding most to the worst
+  /// child's error are refined into the existing children until it fits. Errors of opposite
+  /// sign cancel (a child nearer one source is farther from another), so only coherent ones (a
+  /// corner child under coarse links to far walls) cost links. Moves the links to `pending`;
+  /// returns whether any moved.
+  bool pushInconsistentLinks(std::vector<Link>& pending, RefinementStats& round) {
+    std::vector<std::vector<uint32_t>> ends(tree_.size());
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      const Link& l = links_[i];
+      if (!tree_[l.a].isLeaf()) ends[l.a].push_back(i);
+      if (!tree_[l.b].isLeaf()) ends[l.b].push_back(i);
+    }
+    std::vector<uint32_t> splitBy(links_.size(), kNoElement);
+    bool any = false;
+    std::vector<double> contribution, deviation;
+    std::vector<uint32_t> order;
+    for (uint32_t e = 0; e < ends.size(); ++e) {
+      const std::vector<uint32_t>& list = ends[e];
+      const double be = maxChannel(radiosity_[e]);
+      if (list.empty() || !(be > 0)) continue;
+      const Element& el = tree_[e];
+      const uint32_t first = el.firstChild, k = el.childCount;
+      const double budget = options_.relativeEpsilon;
+      contribution.assign(list.size() * k, 0.0);
+      deviation.assign(k, 0.0);
+      for (size_t j = 0; j < list.size(); ++j) {
+        const Link& l = links_[list[j]];
+        const bool atA = l.a == e;
+        const uint32_t other = atA ? l.b : l.a;
+        const double mean =
+            atA ? l.unoccludedAB : l.unoccludedAB * tree_[l.a].area / tree_[l.b].area;
+        const double weight =
+            maxChannel(reflectance_[el.patch] * radiosity_[other]) * l.visibility / be;
+        for (uint32_t c = 0; c < k; ++c) {
+          const double own = pointFormFactorToFront(tree_[first + c].polygon.centroid(),
+                                                    el.polygon.plane, tree_[other].polygon, tol_);
+          deviation[c] += contribution[j * k + c] = weight * (mean - own);
+        }
+      }
+      for (uint32_t pass = 0; pass <= k; ++pass) {
+        uint32_t worst = 0;
+        for (uint32_t c = 1; c < k; ++c)
+          if (std::abs(deviation[c]) > std::abs(deviation[worst])) worst = c;
+        if (std::abs(deviation[worst]) <= budget) break;
+        const double sign = deviation[worst] > 0 ? 1.0 : -1.0;
+        order.clear();
+        for (uint32_t j = 0; j < list.size(); ++j)
+          if (splitBy[list[j]] != e && sign * contribution[j * k + worst] > 0) order.push_back(j);
+        std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+          const double cx = sign * contribution[x * k + worst],
+                       cy = sign * contribution[y * k + worst];
+          return cx != cy ? cx > cy : x < y;
+        });
+        for (uint32_t j : order) {
+          if (std::abs(deviation[worst]) <= budget) break;
+          for (uint32_t c = 0; c < k; ++c) deviation[c] -= contribution[j * k + c];
+          if (splitBy[list[j]] == kNoElement) {
+            splitBy[list[j]] = e;
+            any = true;
+          }
+        }
       }
     }
+    if (!any) return false;
+    std::vector<Link> kept;
+    kept.reserve(links_.size());
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      if (splitBy[i] == kNoElement)
+        kept.push_back(links_[i]);
+      else
+        replaceBy(links_[i], splitBy[i], pending, round);
+    }
+    links_ = std::move(kept);
+    return true;
   }
 
   bool subdivide(uint32_t e) {
@@ -206,6 +387,7 @@ class Solver {
       // New elements start with their parent's radiosity (what push-pull would give them).
       const Rgb inherited = radiosity_[e];
       radiosity_.resize(tree_.size(), inherited);
+      brightest_.resize(tree_.size(), brightest_[e]);
       gathered_.resize(tree_.size(), Rgb{});
     }
     return true;
@@ -242,19 +424,23 @@ class Solver {
     const Element& el = tree_[e];
     const Rgb total = down + gathered_[e];
     Rgb b;
+    double brightest = 0;
     if (el.isLeaf()) {
       b = emission_[el.patch] + reflectance_[el.patch] * total;
+      brightest = maxChannel(b);
     } else {
       double area = 0;
       for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {
         b += tree_[c].area * pushPull(c, total);
         area += tree_[c].area;
+        brightest = std::max(brightest, brightest_[c]);
       }
       b = (1.0 / area) * b;
     }
+    brightest_[e] = brightest;
     const Rgb old = radiosity_[e];
-    maxChange_ = std::max({maxChange_, std::abs(b.r - old.r), std::abs(b.g - old.g),
-                           std::abs(b.b - old.b)});
+    maxChange_ =
+        std::max({maxChange_, std::abs(b.r - old.r), std::abs(b.g - old.g), std::abs(b.b - old.b)});
     maxRadiosity_ = std::max(maxRadiosity_, maxChannel(b));
     radiosity_[e] = b;
     return b;
@@ -265,19 +451,24 @@ class Solver {
     round.elements = tree_.size();
     round.leaves = tree_.leafCount();
     for (const Link& l : links_) {
-      if (l.status == VisibilityStatus::Visible) ++round.links.visible;
-      else ++round.links.partial;
+      if (l.status == VisibilityStatus::Visible)
+        ++round.links.visible;
+      else if (l.status == VisibilityStatus::Partial)
+        ++round.links.partial;
+      else
+        ++round.links.invisible;
     }
   }
 
   void report(const RefinementStats& r) const {
     if (!options_.progress) return;
-    options_.progress(fmt::format(
-        "radiosity round {}: {} links refined, {} links (V {} / P {}), created V {} P {} I {}, "
-        "{} elements, {} rays, refine {:.2f} s, solve {} sweeps {:.2f} s",
-        r.round, r.linksRefined, r.links.total(), r.links.visible, r.links.partial,
-        r.created.visible, r.created.partial, r.created.invisible, r.elements, r.rays,
-        r.refineSeconds, r.sweeps, r.solveSeconds));
+    options_.progress(
+        fmt::format("radiosity round {}: {} links refined, {} links (V {} / P {} / I {}), created "
+                    "V {} P {} I {}, "
+                    "{} elements, {} rays, refine {:.2f} s, solve {} sweeps {:.2f} s",
+                    r.round, r.linksRefined, r.links.total(), r.links.visible, r.links.partial,
+                    r.links.invisible, r.created.visible, r.created.partial, r.created.invisible,
+                    r.elements, r.rays, r.refineSeconds, r.sweeps, r.solveSeconds));
   }
 
   const Scene& scene_;
@@ -288,6 +479,7 @@ class Solver {
   std::vector<Link> links_;
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
+  std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)
   double minArea_ = 0, threshold_ = 0;
   double maxChange_ = 0, maxRadiosity_ = 0;
   RadiosityStats stats_;

@@ -16,6 +16,15 @@ uint64_t mixSeed(uint64_t a, uint64_t b, uint64_t c) {
   return g3.next();
 }
 
+double kernelWeight(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny) {
+  const Vec3 d = y - x;
+  const double r2 = dot(d, d);
+  if (!(r2 > 0)) return 0.0;
+  const double cx = dot(nx, d), cy = -dot(ny, d);
+  if (!(cx > 0) || !(cy > 0)) return 0.0;
+  return cx * cy / (r2 * r2);
+}
+
 std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng) {
   std::vector<Vec3> points;
   if (count <= 0 || vertices.size() < 3) return points;
@@ -50,31 +59,6 @@ std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, Sp
     points.push_back(p0 * (1.0 - a) + (p1 * (1.0 - u2) + p2 * u2) * a);
   }
   return points;
-}
-
-SampleSegments sampleSegments(const ConvexPolygon& a, const ConvexPolygon& b, int count,
-                              SplitMix64& rng) {
-  SampleSegments s;
-  s.from = stratifiedPoints(a.vertices, count, rng);
-  s.to = stratifiedPoints(b.vertices, count, rng);
-  for (size_t i = s.to.size(); i > 1; --i) std::swap(s.to[i - 1], s.to[rng.next() % i]);
-  return s;
-}
-
-double unblockedFraction(const ConvexPolygon& a, const ConvexPolygon& b, const SampleSegments& s,
-                         const std::function<bool(const Vec3&, const Vec3&)>& blocked,
-                         size_t* carrying) {
-  size_t clear = 0, carries = 0, clearCarrying = 0;
-  for (size_t i = 0; i < s.from.size(); ++i) {
-    const bool free = !blocked(s.from[i], s.to[i]);
-    const bool c = a.plane.distance(s.to[i]) > 0 && b.plane.distance(s.from[i]) > 0;
-    clear += free;
-    carries += c;
-    clearCarrying += free && c;
-  }
-  if (carrying) *carrying = carries;
-  if (carries > 0) return static_cast<double>(clearCarrying) / static_cast<double>(carries);
-  return s.from.empty() ? 1.0 : static_cast<double>(clear) / static_cast<double>(s.from.size());
 }
 
 }  // namespace gv

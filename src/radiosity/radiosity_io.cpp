@@ -33,7 +33,9 @@ nlohmann::json countsJson(const LinkCounts& c) {
           {"invisible_percent", percent(c.invisible, total)}};
 }
 
-double maxChannel(const Rgb& c) { return std::max({c.r, c.g, c.b}); }
+double maxChannel(const Rgb& c) {
+  return std::max({c.r, c.g, c.b});
+}
 
 }  // namespace
 
@@ -73,6 +75,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
           {"options",
            {{"rays_per_link", raysPerLink},
             {"epsilon", options.epsilon},
+            {"relative_epsilon", options.relativeEpsilon},
             {"min_area", options.minArea},
             {"tolerance", options.tolerance},
             {"max_refinements", options.maxRefinements},
@@ -118,8 +121,10 @@ void writeElementsPly(const RadiosityResult& result, const std::string& path, do
   try {
     auto out = fmt::output_file(path);
     out.print("ply\nformat ascii 1.0\n");
-    out.print("comment globalvis radiosity: leaf elements; colours = radiosity / {:.6g}, gamma "
-              "1/{}\n", white, kDisplayGamma);
+    out.print(
+        "comment globalvis radiosity: leaf elements; colours = radiosity / {:.6g}, gamma "
+        "1/{}\n",
+        white, kDisplayGamma);
     out.print("element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
               mesh.positions.size());
     out.print("property uchar red\nproperty uchar green\nproperty uchar blue\n");

@@ -4,12 +4,17 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "radiosity/polygon_sampling.h"
+#include "radiosity/form_factor.h"
+#include "radiosity/link_sampling.h"
 
 namespace gv {
 
 RayVisibility::RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink)
-    : scene_(scene), rays_(rays), raysPerLink_(raysPerLink) {
+    : scene_(scene),
+      rays_(rays),
+      raysPerLink_(raysPerLink),
+      tol_(scene.tolerance()),
+      endOffset_(kRayEndOffset * scene.bounds().diagonal()) {
   if (raysPerLink < 1) throw std::invalid_argument("rays per link must be at least 1");
 }
 
@@ -23,16 +28,20 @@ void RayVisibility::forEachCandidatePair(
 VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, TubeId,
                                            uint64_t seed) {
   SplitMix64 rng(seed);
-  const SampleSegments samples = sampleSegments(a.polygon, b.polygon, raysPerLink_, rng);
-  const double fraction = unblockedFraction(
-      a.polygon, b.polygon, samples,
-      [&](const Vec3& p, const Vec3& q) { return rays_.occluded(p, q, a.patch, b.patch); });
+  const std::optional<SampledVisibility> v = sampleLinkVisibility(
+      a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
+        const Vec3 d = q - p;
+        const double len = length(d);
+        const double pull = len > 0 ? std::min(0.01, endOffset_ / len) : 0.0;
+        return rays_.occluded(p + d * pull, q - d * pull, a.patch, b.patch);
+      });
+  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0};
   VisibilityEstimate e;
-  e.raysCast = samples.from.size();
-  e.fraction = fraction;
-  e.status = fraction == 0
-                 ? VisibilityStatus::Invisible
-                 : (fraction == 1 ? VisibilityStatus::Visible : VisibilityStatus::Partial);
+  e.raysCast = v->samples;
+  e.fraction = v->fraction;
+  e.status = v->clear == 0 ? VisibilityStatus::Invisible
+                           : (v->clear == v->samples ? VisibilityStatus::Visible
+                                                     : VisibilityStatus::Partial);
   return e;
 }
 

@@ -9,6 +9,13 @@
 
 namespace gv {
 
+/// Embree works in single precision: a segment that starts or ends on a patch can "hit" another
+/// patch coplanar with that one (two faces back to back, an end cap flush with a wall) at t ~ 0
+/// or 1. Segment ends are pulled in by this fraction of the scene's diagonal (~16 float ulps
+/// relative to the scene), and photon rays start this far along. Coplanar patches cannot block
+/// a segment leaving their plane, so nothing real is lost.
+inline constexpr double kRayEndOffset = 1e-6;
+
 /// `rays` mode. Visible when all rays reach, Invisible when none does (HSA91 then drops the link;
 /// a light path narrower than the ray spacing can be missed: the sampling error the paper's
 /// conservative blocker lists remove), Partial otherwise.
@@ -19,11 +26,10 @@ class RayVisibility final : public LinkVisibility {
 
   std::string_view name() const override { return "rays"; }
   /// All pairs a < b of the scene's patches (n(n-1)/2).
-  void forEachCandidatePair(
-      const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
-  /// raysPerLink segments between stratified points of a and of b (paired by a random
-  /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves;
-  /// the fraction counts the light-carrying (front-to-front) samples only (polygon_sampling.h).
+  void forEachCandidatePair(const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
+  /// raysPerLink segments between stratified points of the parts of a and b that exchange light
+  /// (exchangingParts) (paired by a random
+  /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves.
   VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                               uint64_t seed) override;
 
@@ -31,6 +37,8 @@ class RayVisibility final : public LinkVisibility {
   const Scene& scene_;
   const EmbreeScene& rays_;
   int raysPerLink_;
+  Tolerance tol_;
+  double endOffset_;  ///< kRayEndOffset times the scene's diagonal
 };
 
 }  // namespace gv

@@ -67,10 +67,15 @@ TEST(EmbreeSceneTest, OccludedAgreesWithBruteForceOnRandomSegments) {
     for (const Patch& patch : scene.patches) {
       const std::optional<Crossing> c = crossing(patch.polygon, p, q);
       if (!c) continue;
-      if (std::abs(c->edgeDistance) < margin) unsure = true;
-      else if (c->edgeDistance > 0) hit = true;
+      if (std::abs(c->edgeDistance) < margin)
+        unsure = true;
+      else if (c->edgeDistance > 0)
+        hit = true;
     }
-    if (unsure) { ++ambiguous; continue; }
+    if (unsure) {
+      ++ambiguous;
+      continue;
+    }
     EXPECT_EQ(bvh.occluded(p, q), hit) << "trial " << trial;
     hit ? ++blocked : ++clear;
   }
@@ -93,8 +98,10 @@ TEST(EmbreeSceneTest, FirstHitIsTheNearestCrossing) {
     for (uint32_t id = 0; id < scene.patches.size(); ++id) {
       const std::optional<Crossing> c = crossing(scene.patches[id].polygon, p, q);
       if (!c) continue;
-      if (std::abs(c->edgeDistance) < 1e-4) unsure = true;
-      else if (c->edgeDistance > 0 && (!best || c->t < best->first)) best = {{c->t, id}};
+      if (std::abs(c->edgeDistance) < 1e-4)
+        unsure = true;
+      else if (c->edgeDistance > 0 && (!best || c->t < best->first))
+        best = {{c->t, id}};
     }
     if (unsure) continue;
     const std::optional<RayHit> h = bvh.firstHit(p, q - p, 1.0);

@@ -15,7 +15,9 @@ namespace {
 const double kPi = std::numbers::pi;
 const Tolerance kTol{10.0};
 
-ConvexPolygon polygon(std::vector<Vec3> v) { return *ConvexPolygon::fromVertices(std::move(v), kTol); }
+ConvexPolygon polygon(std::vector<Vec3> v) {
+  return *ConvexPolygon::fromVertices(std::move(v), kTol);
+}
 
 /// Howell B-3: differential area to a parallel a × b rectangle, normal through one corner, at
 /// distance c.
@@ -49,14 +51,16 @@ double howellPerpendicularRectangles(double w, double h, double l) {
 }
 
 // Rectangle [0,a]x[0,b] at z = 0 facing +z, and one at z = c facing -z.
-ConvexPolygon floorRect(double a, double b) { return polygon({{0, 0, 0}, {a, 0, 0}, {a, b, 0}, {0, b, 0}}); }
+ConvexPolygon floorRect(double a, double b) {
+  return polygon({{0, 0, 0}, {a, 0, 0}, {a, b, 0}, {0, b, 0}});
+}
 ConvexPolygon ceilingRect(double a, double b, double c) {
   return polygon({{0, 0, c}, {0, b, c}, {a, b, c}, {a, 0, c}});
 }
 
 TEST(FormFactorTest, PointToParallelRectangleMatchesHowellB3) {
-  for (const auto& [a, b, c] : {std::array{1.0, 1.0, 1.0}, std::array{2.0, 0.5, 0.3},
-                                std::array{0.1, 3.0, 2.0}}) {
+  for (const auto& [a, b, c] :
+       {std::array{1.0, 1.0, 1.0}, std::array{2.0, 0.5, 0.3}, std::array{0.1, 3.0, 2.0}}) {
     const ConvexPolygon r = ceilingRect(a, b, c);
     const double f = pointToPolygonFormFactor({0, 0, 0}, {0, 0, 1}, r.vertices);
     EXPECT_NEAR(f, howellPointToParallelRectangle(a, b, c), 1e-12) << a << " " << b << " " << c;
@@ -76,8 +80,8 @@ TEST(FormFactorTest, ParallelOpposedRectanglesMatchHowellC11) {
 
 TEST(FormFactorTest, PerpendicularRectanglesSharingAnEdgeMatchHowellC14) {
   EXPECT_NEAR(howellPerpendicularRectangles(1, 1, 1), 0.20004, 1e-5);  // catalogue value
-  for (const auto& [w, h, l] : {std::array{1.0, 1.0, 1.0}, std::array{2.0, 0.5, 1.0},
-                                std::array{0.2, 3.0, 1.5}}) {
+  for (const auto& [w, h, l] :
+       {std::array{1.0, 1.0, 1.0}, std::array{2.0, 0.5, 1.0}, std::array{0.2, 3.0, 1.5}}) {
     // Rectangle 1 on the floor (x in [0,l], y in [0,w]) facing +z; rectangle 2 the wall y = 0
     // (x in [0,l], z in [0,h]) facing +y; common edge along x.
     const ConvexPolygon r1 = polygon({{0, 0, 0}, {l, 0, 0}, {l, w, 0}, {0, w, 0}});
@@ -155,8 +159,8 @@ TEST(FormFactorTest, ReciprocityOnSkewPolygons) {
   // from above, so facing down), facing each other.
   const ConvexPolygon tri = polygon({{0, 0, 0}, {2, 0.3, 0}, {0.4, 1.5, 0.1}});
   auto above = [](double x, double y) { return Vec3{x, y, 1.3 + 0.2 * x + 0.1 * y}; };
-  const ConvexPolygon pent = polygon({above(0.2, 0.1), above(0.0, 1.0), above(1.0, 1.5),
-                                      above(1.8, 0.8), above(1.2, 0.0)});
+  const ConvexPolygon pent = polygon(
+      {above(0.2, 0.1), above(0.0, 1.0), above(1.0, 1.5), above(1.8, 0.8), above(1.2, 0.0)});
   ASSERT_TRUE(canFace(tri, pent, 1e-9));
   const double ab = formFactor(tri, pent, kTol) * tri.area();
   const double ba = formFactor(pent, tri, kTol) * pent.area();

@@ -24,41 +24,44 @@ TEST(RadiosityCliTest, EmitterOverReceiverGivesRhoEF) {
                   "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
                   "usemtl grey\nf 1 2 3 4\n"
                   "usemtl light\nf 5 8 7 6\n");
-  const auto out = dir / "out";
-  const test::CliResult r =
-      test::runCli("radiosity '" + (dir / "pair.obj").string() + "' -o '" + out.string() + "' -q");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const std::string mode : {"rays", "shaft"}) {
+    SCOPED_TRACE(mode);
+    const auto out = dir / ("out_" + mode);
+    const test::CliResult r = test::runCli("radiosity '" + (dir / "pair.obj").string() + "' -o '" +
+                                           out.string() + "' -q --visibility " + mode);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
 
-  std::ifstream txt(out / "radiosity.txt");
-  ASSERT_TRUE(txt.good());
-  std::vector<std::array<double, 3>> rows;
-  std::string line;
-  while (std::getline(txt, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream in(line);
-    size_t id;
-    std::array<double, 3> c{};
-    in >> id >> c[0] >> c[1] >> c[2];
-    ASSERT_EQ(id, rows.size());
-    rows.push_back(c);
+    std::ifstream txt(out / "radiosity.txt");
+    ASSERT_TRUE(txt.good());
+    std::vector<std::array<double, 3>> rows;
+    std::string line;
+    while (std::getline(txt, line)) {
+      if (line.empty() || line[0] == '#') continue;
+      std::istringstream in(line);
+      size_t id;
+      std::array<double, 3> c{};
+      in >> id >> c[0] >> c[1] >> c[2];
+      ASSERT_EQ(id, rows.size());
+      rows.push_back(c);
+    }
+    ASSERT_EQ(rows.size(), 2u);
+    const double f = 0.19982;  // Howell C-11, X = Y = 1
+    const double rho = 0.6;
+    EXPECT_NEAR(rows[0][0], rho * 3 * f, 0.02 * rho * 3 * f);
+    EXPECT_NEAR(rows[0][1], rho * 2 * f, 0.02 * rho * 2 * f);
+    EXPECT_NEAR(rows[0][2], rho * 1 * f, 0.02 * rho * 1 * f);
+    EXPECT_DOUBLE_EQ(rows[1][0], 3.0);
+
+    EXPECT_TRUE(std::filesystem::exists(out / "patches.obj"));
+    EXPECT_TRUE(std::filesystem::exists(out / "patches.mtl"));
+    EXPECT_TRUE(std::filesystem::exists(out / "elements.ply"));
+    std::ifstream stats(out / "stats.json");
+    const nlohmann::json j = nlohmann::json::parse(stats);
+    EXPECT_EQ(j["visibility"], mode);
+    EXPECT_GE(j["rounds"].size(), 1u);
+    EXPECT_EQ(j["rounds"][0]["links"]["total"], 1);
+    EXPECT_TRUE(j["totals"]["converged"].get<bool>());
   }
-  ASSERT_EQ(rows.size(), 2u);
-  const double f = 0.19982;  // Howell C-11, X = Y = 1
-  const double rho = 0.6;
-  EXPECT_NEAR(rows[0][0], rho * 3 * f, 0.02 * rho * 3 * f);
-  EXPECT_NEAR(rows[0][1], rho * 2 * f, 0.02 * rho * 2 * f);
-  EXPECT_NEAR(rows[0][2], rho * 1 * f, 0.02 * rho * 1 * f);
-  EXPECT_DOUBLE_EQ(rows[1][0], 3.0);
-
-  EXPECT_TRUE(std::filesystem::exists(out / "patches.obj"));
-  EXPECT_TRUE(std::filesystem::exists(out / "patches.mtl"));
-  EXPECT_TRUE(std::filesystem::exists(out / "elements.ply"));
-  std::ifstream stats(out / "stats.json");
-  const nlohmann::json j = nlohmann::json::parse(stats);
-  EXPECT_EQ(j["visibility"], "rays");
-  EXPECT_GE(j["rounds"].size(), 1u);
-  EXPECT_EQ(j["rounds"][0]["links"]["total"], 1);
-  EXPECT_TRUE(j["totals"]["converged"].get<bool>());
 }
 
 TEST(RadiosityCliTest, BadInputExitsTwo) {

@@ -9,6 +9,7 @@
 #include "generators/cornell_box.h"
 #include "generators/scene_builder.h"
 #include "radiosity/element_tree.h"
+#include "radiosity/furnace_scene.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
@@ -22,28 +23,11 @@ RadiosityResult solveWithRays(const Scene& scene, RadiosityOptions options = {},
   return solveRadiosity(scene, visibility, options);
 }
 
-/// Adds the six inward-facing faces of the box [lo, hi], each cut into n x n patches.
-void addInwardBox(SceneBuilder& b, const Vec3& lo, const Vec3& hi, uint32_t material, int n) {
-  for (int axis = 0; axis < 3; ++axis) {
-    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-    for (int side = 0; side < 2; ++side) {
-      for (int i = 0; i < n; ++i) {
-        for (int j = 0; j < n; ++j) {
-          Vec3 p0, p1;
-          p0[axis] = p1[axis] = side == 0 ? lo[axis] : hi[axis];
-          p0[u] = lo[u] + (hi[u] - lo[u]) * i / n;
-          p1[u] = lo[u] + (hi[u] - lo[u]) * (i + 1) / n;
-          p0[v] = lo[v] + (hi[v] - lo[v]) * j / n;
-          p1[v] = lo[v] + (hi[v] - lo[v]) * (j + 1) / n;
-          // Facing into the box: +axis on the low side, -axis on the high side.
-          ASSERT_TRUE(b.addAxisRect(axis, side == 0, p0, p1, material));
-        }
-      }
-    }
-  }
-}
+using testing::addInwardBox;
 
-double luminance(const Rgb& c) { return (c.r + c.g + c.b) / 3; }
+double luminance(const Rgb& c) {
+  return (c.r + c.g + c.b) / 3;
+}
 
 TEST(RadiosityFurnaceTest, ClosedEmittingBoxReachesEOverOneMinusRho) {
   Scene scene;
@@ -139,9 +123,9 @@ TEST(RadiosityEnergyTest, CornellBoxPowerIsBoundedAndPlausible) {
 TEST(RadiosityElementTest, SplitsPartitionTheirParent) {
   const Tolerance tol{10};
   const std::vector<std::vector<Vec3>> shapes{
-      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},                          // triangle: 4
-      {{0, 0, 0}, {1, 0, 0}, {1.2, 1, 0}, {0, 0.8, 0}},           // quad: 4
-      {{0, 0, 0}, {5, 0, 0}, {5, 1, 0}, {0, 1, 0}},               // long quad: 2
+      {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}},                               // triangle: 4
+      {{0, 0, 0}, {1, 0, 0}, {1.2, 1, 0}, {0, 0.8, 0}},                // quad: 4
+      {{0, 0, 0}, {5, 0, 0}, {5, 1, 0}, {0, 1, 0}},                    // long quad: 2
       {{0, 0, 0}, {2, 0, 0}, {3, 1, 0}, {1.5, 2.5, 0}, {-0.5, 1, 0}},  // pentagon: 5
   };
   const std::vector<size_t> counts{4, 4, 2, 5};

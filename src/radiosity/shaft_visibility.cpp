@@ -1,0 +1,90 @@
+// `shaft` visibility: candidate lists from convex-hull culling, rays against the list only.
+// Haines & Wallace 1991 as the paper's §6.3 baseline; hull test of paper §5.
+#include "radiosity/shaft_visibility.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/link_sampling.h"
+#include "visibility/hull_overlap.h"
+
+namespace gv {
+
+bool segmentCrossesPolygon(const Vec3& from, const Vec3& to, const ConvexPolygon& p, double eps) {
+  const double df = p.plane.distance(from), dt = p.plane.distance(to);
+  if (!((df > 0 && dt < 0) || (df < 0 && dt > 0))) return false;
+  const double t = df / (df - dt);
+  const Vec3 x = from + (to - from) * t;
+  const Vec3& n = p.plane.normal;
+  const std::vector<Vec3>& v = p.vertices;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec3 edge = v[(i + 1) % v.size()] - v[i];
+    // Signed distance of x from edge i's line within the plane, positive inside (CCW about n).
+    const double inside = dot(cross(edge, x - v[i]), n) / length(edge);
+    if (inside < -eps) return false;
+  }
+  return true;
+}
+
+ShaftVisibility::ShaftVisibility(const Scene& scene, int raysPerLink)
+    : scene_(scene), raysPerLink_(raysPerLink), tol_(scene.tolerance()), eps_(tol_.length()) {
+  if (raysPerLink < 1) throw std::invalid_argument("rays per link must be at least 1");
+  tubes_.emplace_back();  // tube 0: nothing can block
+}
+
+void ShaftVisibility::forEachCandidatePair(
+    const std::function<void(uint32_t, uint32_t, TubeId)>& visit) {
+  const auto n = static_cast<uint32_t>(scene_.patches.size());
+  for (uint32_t a = 0; a < n; ++a)
+    for (uint32_t b = a + 1; b < n; ++b) visit(a, b, kNoTube);
+}
+
+TubeId ShaftVisibility::store(std::vector<uint32_t> list) {
+  ++lists_;
+  listEntries_ += list.size();
+  if (list.empty()) return 0;
+  tubes_.push_back(std::move(list));
+  return static_cast<TubeId>(tubes_.size() - 1);
+}
+
+VisibilityEstimate ShaftVisibility::estimate(const Element& a, const Element& b, TubeId parentTube,
+                                             uint64_t seed) {
+  const Tolerance& tol = tol_;
+  std::vector<uint32_t> list;
+  auto consider = [&](uint32_t p) {
+    if (p == a.patch || p == b.patch) return;
+    ++hullTests_;
+    if (meetsConvexHull(scene_.patches[p].polygon, a.polygon, b.polygon, tol)) list.push_back(p);
+  };
+  if (parentTube == kNoTube) {
+    for (uint32_t p = 0; p < scene_.patches.size(); ++p) consider(p);
+  } else {
+    // The child's hull lies inside the parent's, so only the parent's candidates can meet it.
+    // (Copied: store() may grow tubes_ and move the parent's list.)
+    const std::vector<uint32_t> parent = tubes_.at(parentTube);
+    for (uint32_t p : parent) consider(p);
+  }
+  VisibilityEstimate e;
+  if (list.empty()) {
+    e.tube = store({});
+    return e;  // Visible, fraction 1, no rays
+  }
+  SplitMix64 rng(seed);
+  const std::optional<SampledVisibility> v = sampleLinkVisibility(
+      a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
+        return std::any_of(list.begin(), list.end(), [&](uint32_t c) {
+          return segmentCrossesPolygon(p, q, scene_.patches[c].polygon, eps_);
+        });
+      });
+  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0};
+  e.raysCast = v->samples;
+  e.fraction = v->fraction;
+  e.status = v->clear == 0 ? VisibilityStatus::Invisible
+                           : (v->clear == v->samples ? VisibilityStatus::Visible
+                                                     : VisibilityStatus::Partial);
+  e.tube = store(std::move(list));
+  return e;
+}
+
+}  // namespace gv

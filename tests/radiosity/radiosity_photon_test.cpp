@@ -1,0 +1,134 @@
+// Hierarchical radiosity against an independent Monte Carlo light tracer (photonReference: no
+// form factors, no mesh) on real scenes: the Cornell box and the default office. Per patch and
+// channel, the solver's area-weighted mean radiosity must match the photon estimate within the
+// photon noise plus a small discretisation allowance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "generators/cornell_box.h"
+#include "generators/office.h"
+#include "generators/scene_builder.h"
+#include "radiosity/furnace_scene.h"
+#include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/photon_reference.h"
+#include "radiosity/ray_visibility.h"
+#include "raycast/embree_scene.h"
+
+namespace gv {
+namespace {
+
+/// Patch channels whose photon estimate has a relative standard error below this take part (small
+/// or dim patches get few photons; their estimate says little).
+constexpr double kMeaningfulNoise = 0.01;
+/// Allowed per-patch deviation: this many photon standard errors plus a fraction of the value
+/// (the solver's discretisation error at default options; per scene below).
+constexpr double kSigmas = 4.0;
+
+struct Comparison {
+  size_t compared = 0, failures = 0;
+  double maxRelative = 0, rmsRelative = 0, meanSigned = 0;
+};
+
+Comparison compare(const Scene& scene, const std::vector<Rgb>& solver, const PhotonResult& ref,
+                   double allowance) {
+  Comparison c;
+  double sumSq = 0;
+  for (size_t p = 0; p < scene.patches.size(); ++p) {
+    const double s[3] = {solver[p].r, solver[p].g, solver[p].b};
+    const double m[3] = {ref.radiosity[p].r, ref.radiosity[p].g, ref.radiosity[p].b};
+    const double e[3] = {ref.standardError[p].r, ref.standardError[p].g, ref.standardError[p].b};
+    for (int ch = 0; ch < 3; ++ch) {
+      if (!(m[ch] > 0) || e[ch] > kMeaningfulNoise * m[ch]) continue;
+      const double rel = (s[ch] - m[ch]) / m[ch];
+      ++c.compared;
+      sumSq += rel * rel;
+      c.meanSigned += rel;
+      c.maxRelative = std::max(c.maxRelative, std::abs(rel));
+      if (std::abs(s[ch] - m[ch]) > kSigmas * e[ch] + allowance * m[ch]) ++c.failures;
+    }
+  }
+  if (c.compared > 0) {
+    c.rmsRelative = std::sqrt(sumSq / static_cast<double>(c.compared));
+    c.meanSigned /= static_cast<double>(c.compared);
+  }
+  return c;
+}
+
+/// Solver (defaults, `rays`, 16 rays per link) against photons: every meaningful patch channel
+/// within kSigmas standard errors plus `allowance`; the mean signed error within `meanBias`.
+void checkAgainstPhotons(const Scene& scene, uint64_t photons, size_t minCompared, double allowance,
+                         double meanBias) {
+  const EmbreeScene bvh(scene);
+  RayVisibility visibility(scene, bvh, 16);
+  const RadiosityResult r = solveRadiosity(scene, visibility);
+  EXPECT_TRUE(r.stats.converged);
+  PhotonOptions po;
+  po.photons = photons;
+  const PhotonResult ref = photonReference(scene, bvh, po);
+  const Comparison c = compare(scene, r.patchRadiosity, ref, allowance);
+  std::printf(
+      "compared %zu patch channels: max %.4f rms %.4f mean signed %+.4f, %zu beyond "
+      "tolerance; %llu photon rays\n",
+      c.compared, c.maxRelative, c.rmsRelative, c.meanSigned, c.failures,
+      static_cast<unsigned long long>(ref.rays));
+  ::testing::Test::RecordProperty("max_relative_error", std::to_string(c.maxRelative));
+  ::testing::Test::RecordProperty("rms_relative_error", std::to_string(c.rmsRelative));
+  ::testing::Test::RecordProperty("mean_signed_error", std::to_string(c.meanSigned));
+  EXPECT_GE(c.compared, minCompared);
+  EXPECT_EQ(c.failures, 0u);
+  EXPECT_LT(std::abs(c.meanSigned), meanBias);
+}
+
+TEST(PhotonReferenceTest, EmitterOverReceiverGivesRhoEF) {
+  // The photon tracer itself against Howell C-11 (unit squares 1 apart: F = 0.19982).
+  Scene scene;
+  const uint32_t light = scene.addMaterial({"light", {0, 0, 0}, {3, 2, 1}});
+  const uint32_t grey = scene.addMaterial({"grey", {0.6, 0.6, 0.6}, {}});
+  SceneBuilder builder(scene, Tolerance{2.0});
+  ASSERT_TRUE(builder.addAxisRect(2, true, {0, 0, 0}, {1, 1, 0}, grey));
+  ASSERT_TRUE(builder.addAxisRect(2, false, {0, 0, 1}, {1, 1, 1}, light));
+  const EmbreeScene bvh(scene);
+  PhotonOptions po;
+  po.photons = 400'000;
+  const PhotonResult ref = photonReference(scene, bvh, po);
+  const double expected = 0.6 * 3 * 0.19982;
+  EXPECT_NEAR(ref.radiosity[0].r, expected, 4 * ref.standardError[0].r);
+  EXPECT_LT(ref.standardError[0].r, 0.01 * expected);
+  EXPECT_EQ(ref.radiosity[1], (Rgb{3, 2, 1}));
+}
+
+TEST(PhotonReferenceTest, FurnaceGivesEOverOneMinusRho) {
+  Scene scene;
+  const uint32_t m = scene.addMaterial({"glow", {0.7, 0.5, 0.3}, {1, 1, 1}});
+  SceneBuilder builder(scene, Tolerance{4.0});
+  testing::addInwardBox(builder, {0, 0, 0}, {1, 2, 1.5}, m, 1);
+  const EmbreeScene bvh(scene);
+  PhotonOptions po;
+  po.photons = 300'000;
+  const PhotonResult ref = photonReference(scene, bvh, po);
+  for (size_t p = 0; p < scene.patches.size(); ++p) {
+    EXPECT_NEAR(ref.radiosity[p].r, 1 / 0.3, 4 * ref.standardError[p].r + 1e-9) << p;
+    EXPECT_NEAR(ref.radiosity[p].b, 1 / 0.7, 4 * ref.standardError[p].b + 1e-9) << p;
+  }
+}
+
+// KNOWN DISCREPANCY (2026-12-01): the allowances below are the measured solver-vs-photon
+// differences at default options, not the goal (1 %). After the fixes of this change (sampled
+// visibility on the exchanging parts, kept sampled-invisible links, kernel-weighted visibility,
+// receiver consistency) the Cornell box is 1.4 % dark on average (it was 3.5 %), worst patch
+// channel 6 % (the block faces); the office 5.4 % dark (it was 18.7 % bright). The remaining
+// darkness shrinks slowly with --epsilon (Cornell: -1.1 % mean at 5e-6), so it is refinement
+// that the BF bound does not target; unresolved. These tests guard against regressions.
+TEST(RadiosityPhotonTest, CornellBoxMatchesLightTracing) {
+  checkAgainstPhotons(generateCornellBox(), 2'000'000, 45, 0.07, 0.02);
+}
+
+TEST(RadiosityPhotonTest, DefaultOfficeMatchesLightTracing) {
+  checkAgainstPhotons(generateOffice(), 2'000'000, 200, 0.12, 0.07);
+}
+
+}  // namespace
+}  // namespace gv
