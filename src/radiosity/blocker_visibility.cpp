@@ -112,14 +112,11 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
       a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
         return segmentBlocked(p, q, v.blockers, table_, tol_.length());
       });
-  if (!sampled) {  // no part of one faces the other: they exchange no light (a proof)
-    e.status = VisibilityStatus::Invisible;
-    e.fraction = 0;
-    return e;
-  }
+  // No part of one faces the other: the unoccluded form factor is 0 and so is the transfer,
+  // whatever the fraction; the link stays PARTIAL as the classification said.
   e.status = VisibilityStatus::Partial;
-  e.raysCast = sampled->samples;
-  e.fraction = sampled->fraction;
+  e.raysCast = sampled ? sampled->samples : 0;
+  e.fraction = sampled ? sampled->fraction : 0.0;
   e.tube = addTube(v.blockers);
   return e;
 }
