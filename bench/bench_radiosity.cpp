@@ -6,6 +6,8 @@
 // scene outside the timing).
 #include <benchmark/benchmark.h>
 
+#include "radiosity_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -25,29 +27,8 @@
 namespace gv {
 namespace {
 
-void check(const Scene& scene, const RadiosityResult& r) {
-  if (!r.stats.converged) throw std::runtime_error("radiosity did not converge");
-  double emitted = 0, out = 0, maxRho = 0;
-  for (size_t p = 0; p < scene.patches.size(); ++p) {
-    const Material& m = scene.materials[scene.patches[p].material];
-    const double a = scene.patches[p].polygon.area();
-    const Rgb& b = r.patchRadiosity[p];
-    if (b.r < m.emission.r || b.g < m.emission.g || b.b < m.emission.b)
-      throw std::runtime_error("radiosity below emission");
-    emitted += a * (m.emission.r + m.emission.g + m.emission.b);
-    out += a * (b.r + b.g + b.b);
-    maxRho = std::max({maxRho, m.reflectance.r, m.reflectance.g, m.reflectance.b});
-  }
-  if (!(out >= emitted && out <= emitted / (1 - maxRho))) throw std::runtime_error("energy bound");
-}
-
-uint64_t hashOf(const RadiosityResult& r) {
-  uint64_t h = 1469598103934665603ull;
-  for (const Rgb& c : r.patchRadiosity)
-    for (double v : {c.r, c.g, c.b})
-      h = (h ^ static_cast<uint64_t>(std::llround(v * 1e6))) * 1099511628211ull;
-  return h;
-}
+using bench::checkRadiosity;
+using bench::radiosityHash;
 
 /// Relative error (per channel) of the solver against the photon reference over the patch
 /// channels whose photon estimate is good to 1 %.
@@ -102,7 +83,7 @@ void run(benchmark::State& state, const std::string& key, const Scene& scene, do
     last = solveRadiosity(scene, *visibility, options);
     benchmark::DoNotOptimize(last.patchRadiosity.data());
   }
-  check(scene, last);
+  checkRadiosity(scene, last);
   const RadiosityStats& s = last.stats;
   state.counters["patches"] = static_cast<double>(s.patches);
   state.counters["links"] = static_cast<double>(s.rounds.back().links.total());
@@ -111,7 +92,7 @@ void run(benchmark::State& state, const std::string& key, const Scene& scene, do
   state.counters["interactions"] = static_cast<double>(s.interactions);
   state.counters["rays"] = static_cast<double>(s.rays);
   state.counters["rounds"] = static_cast<double>(s.rounds.size());
-  state.counters["hash"] = static_cast<double>(hashOf(last) % 1000000007ull);
+  state.counters["hash"] = static_cast<double>(radiosityHash(last) % 1000000007ull);
   const ErrorVsPhotons e = errorVsPhotons(scene, bvh, key, last.patchRadiosity);
   state.counters["rms_vs_photons"] = e.rms;
   state.counters["mean_vs_photons"] = e.mean;

@@ -5,6 +5,8 @@
 // reports a hash of the per-patch radiosity.
 #include <benchmark/benchmark.h>
 
+#include "radiosity_checks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -20,29 +22,8 @@
 namespace gv {
 namespace {
 
-void check(const Scene& scene, const RadiosityResult& r) {
-  if (!r.stats.converged) throw std::runtime_error("radiosity did not converge");
-  double emitted = 0, out = 0, maxRho = 0;
-  for (size_t p = 0; p < scene.patches.size(); ++p) {
-    const Material& m = scene.materials[scene.patches[p].material];
-    const double a = scene.patches[p].polygon.area();
-    const Rgb& b = r.patchRadiosity[p];
-    if (b.r < m.emission.r || b.g < m.emission.g || b.b < m.emission.b)
-      throw std::runtime_error("radiosity below emission");
-    emitted += a * (m.emission.r + m.emission.g + m.emission.b);
-    out += a * (b.r + b.g + b.b);
-    maxRho = std::max({maxRho, m.reflectance.r, m.reflectance.g, m.reflectance.b});
-  }
-  if (!(out >= emitted && out <= emitted / (1 - maxRho))) throw std::runtime_error("energy bound");
-}
-
-uint64_t hashOf(const RadiosityResult& r) {
-  uint64_t h = 1469598103934665603ull;
-  for (const Rgb& c : r.patchRadiosity)
-    for (double v : {c.r, c.g, c.b})
-      h = (h ^ static_cast<uint64_t>(std::llround(v * 1e6))) * 1099511628211ull;
-  return h;
-}
+using bench::checkRadiosity;
+using bench::radiosityHash;
 
 void run(benchmark::State& state, const Scene& scene, double minCoverage, bool resolvePunts) {
   BspOptions bsp;
@@ -61,7 +42,7 @@ void run(benchmark::State& state, const Scene& scene, double minCoverage, bool r
     totals = visibility.stats().total();
     benchmark::DoNotOptimize(last.patchRadiosity.data());
   }
-  check(scene, last);
+  checkRadiosity(scene, last);
   const RadiosityStats& s = last.stats;
   state.counters["graph_seconds"] = graphSeconds;
   state.counters["links"] = static_cast<double>(s.rounds.back().links.total());
@@ -72,7 +53,7 @@ void run(benchmark::State& state, const Scene& scene, double minCoverage, bool r
   state.counters["rays"] = static_cast<double>(s.rays);
   state.counters["blocker_tests"] = static_cast<double>(totals.blockers.total());
   state.counters["punts_removed"] = static_cast<double>(totals.blockers.puntsRemoved);
-  state.counters["hash"] = static_cast<double>(hashOf(last) % 1000000007ull);
+  state.counters["hash"] = static_cast<double>(radiosityHash(last) % 1000000007ull);
 }
 
 void BM_RadiosityBlockersCornell(benchmark::State& state) {
