@@ -194,7 +194,8 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
       const Segment line{origin_, origin_ + normal_ * scale_};
       if (crossesForward(line, level.original)) w = line;
     }
-    return accept(std::move(level), w);
+    levels_.push_back(std::move(level));
+    return accept(w);
   }
 
   Level& prev = levels_.back();
@@ -262,7 +263,8 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     if (std::optional<Segment> w = cheapWitness(level)) {
       // Proven stabbed without the LP; keep its point an LP point for later lazy steps.
       if (level.lpValid) lowerLazily(level, rowsBefore);
-      return accept(std::move(level), w);
+      levels_.push_back(std::move(level));
+      return accept(w);
     }
   }
   if (level.lpValid && testLp(level) == StabbingResult::Blocked) {
@@ -273,14 +275,11 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   levels_.push_back(std::move(level));
   std::optional<Segment> w;
   if (levels_.back().lpValid && options_.seekWitness) w = findWitness(levels_.back().optimum);
-  Level top = std::move(levels_.back());
-  levels_.pop_back();
-  return accept(std::move(top), w);
+  return accept(w);
 }
 
-StabbingResult PortalSequenceStabber::accept(Level&& level, std::optional<Segment> witness) {
-  level.witness = witness;
-  levels_.push_back(std::move(level));
+StabbingResult PortalSequenceStabber::accept(std::optional<Segment> witness) {
+  levels_.back().witness = witness;
   if (witness) {
     witness_ = witness;
     ++stats_.stabbed;

@@ -134,7 +134,8 @@ class PortalSequenceStabber {
   StabbingResult testLp(Level& level);
   void lowerLazily(Level& level, size_t firstRow) const;
   std::optional<Segment> cheapWitness(const Level& level);
-  StabbingResult accept(Level&& level, std::optional<Segment> witness);
+  /// Records the outcome of the push that appended the last level.
+  StabbingResult accept(std::optional<Segment> witness);
   void appendRows(std::span<const Vec3> loop);
   std::optional<Segment> findWitness(const LpVector& x);
   bool confirms(const Segment& line) const;
