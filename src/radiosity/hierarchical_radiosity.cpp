@@ -172,7 +172,16 @@ class Solver {
   void refineLinks(RefinementStats& round) {
     std::vector<Link> pending = std::move(links_);
     links_.clear();
+    // Children go on top of the stack, so the round's own links are its bottom `originals`.
+    const size_t total = pending.size();
+    size_t originals = total;
     while (!pending.empty()) {
+      if (pending.size() == originals) {
+        --originals;
+        const size_t done = total - originals;
+        if (options_.refineProgress && (done % 256 == 0 || done == total))
+          options_.refineProgress(done, total);
+      }
       const Link l = pending.back();
       pending.pop_back();
       const LinkError error = linkError(l);
