@@ -206,8 +206,8 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
 
   if (!options.radiosity) return row;
   if (scene.patches.size() > options.radiosityMaxPatches) {
-    row.notes.push_back(fmt::format("radiosity skipped: over {} patches",
-                                    options.radiosityMaxPatches));
+    row.notes.push_back(
+        fmt::format("radiosity skipped: over {} patches", options.radiosityMaxPatches));
     return row;
   }
   if (budget.spent()) {
@@ -257,8 +257,8 @@ void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow&
         !std::binary_search(rows[l].begin(), rows[l].end(), static_cast<uint32_t>(l)))
       error = fmt::format("leaf {}'s row is unsorted or lacks itself", l);
     for (uint32_t v : rows[l]) {
-      if (v >= rows.size() || !std::binary_search(rows[v].begin(), rows[v].end(),
-                                                  static_cast<uint32_t>(l))) {
+      if (v >= rows.size() ||
+          !std::binary_search(rows[v].begin(), rows[v].end(), static_cast<uint32_t>(l))) {
         error = fmt::format("leaf {} sees {} but not back", l, v);
         break;
       }

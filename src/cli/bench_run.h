@@ -24,10 +24,10 @@ inline constexpr double kBenchVolumeTolerance = 1e-6;
 
 /// What to run on each scene.
 struct BenchOptions {
-  double maxSeconds = 30;           ///< per scene; later stages are skipped once exceeded
-  bool radiosity = false;           ///< also solve radiosity (rays mode, 16 rays per link)
+  double maxSeconds = 30;             ///< per scene; later stages are skipped once exceeded
+  bool radiosity = false;             ///< also solve radiosity (rays mode, 16 rays per link)
   size_t radiosityMaxPatches = 3000;  ///< larger scenes skip radiosity (its initial links are n²)
-  int threads = 0;                  ///< propagation and PVS threads (0 = all cores)
+  int threads = 0;                    ///< propagation and PVS threads (0 = all cores)
 };
 
 /// One scene's figures. Empty optionals: the stage did not run (see `notes`).
@@ -43,9 +43,9 @@ struct BenchRow {
   std::optional<size_t> pvsLeafs;
   std::optional<double> pvsMeanLeafs;
   std::string visHash, radiosityHash, pvsHash;  ///< FNV-1a, 16 hex digits; empty if not run
-  std::vector<std::string> checks;    ///< checks passed
-  std::vector<std::string> failures;  ///< checks failed (bench exits non-zero)
-  std::vector<std::string> notes;     ///< stages skipped and why
+  std::vector<std::string> checks;              ///< checks passed
+  std::vector<std::string> failures;            ///< checks failed (bench exits non-zero)
+  std::vector<std::string> notes;               ///< stages skipped and why
 };
 
 /// Makes a scene (generator or importer); timed as the row's load stage.

@@ -3,8 +3,10 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <ctime>
 #include <fstream>
+#include <functional>
 #include <thread>
 
 namespace gv::cli {
@@ -74,25 +76,61 @@ std::string todayUtc() {
 }
 
 std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
-  std::string out =
-      "| scene | patches | load s | BSP s | portals s | vis s | radiosity s | cells | portals | "
-      "pairs listed | VISIBLE | PARTIAL | mean blockers | vis hash | PVS s | PVS leafs | "
-      "PVS mean leafs | PVS hash | checks |\n"
-      "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|--:|--:|--:|---|---|\n";
+  const bool radiosity = std::any_of(
+      rows.begin(), rows.end(), [](const BenchRow& r) { return r.radiositySeconds.has_value(); });
+  auto hash = [](const std::string& h) { return h.empty() ? std::string("—") : "`" + h + "`"; };
+  // Columns: heading, alignment, value.
+  struct Column {
+    const char* heading;
+    const char* align;
+    std::function<std::string(const BenchRow&)> value;
+  };
+  std::vector<Column> columns = {
+      {"scene", "---", [](const BenchRow& r) { return r.name; }},
+      {"patches", "--:", [](const BenchRow& r) { return countCell(uint64_t{r.patches}); }},
+      {"load s", "--:", [](const BenchRow& r) { return cell(r.loadSeconds, "{:.3f}"); }},
+      {"BSP s", "--:", [](const BenchRow& r) { return cell(r.bspSeconds, "{:.3f}"); }},
+      {"portals s", "--:", [](const BenchRow& r) { return cell(r.portalSeconds, "{:.3f}"); }},
+      {"vis s", "--:", [](const BenchRow& r) { return cell(r.visSeconds, "{:.2f}"); }},
+      {"cells", "--:", [](const BenchRow& r) { return countCell(widen(r.cells)); }},
+      {"portals", "--:", [](const BenchRow& r) { return countCell(widen(r.portals)); }},
+      {"pairs listed", "--:", [](const BenchRow& r) { return countCell(r.pairsListed); }},
+      {"VISIBLE", "--:", [](const BenchRow& r) { return countCell(r.pairsVisible); }},
+      {"PARTIAL", "--:", [](const BenchRow& r) { return countCell(r.pairsPartial); }},
+      {"mean blockers", "--:", [](const BenchRow& r) { return cell(r.meanBlockers, "{:.2f}"); }},
+      {"vis hash", "---", [&](const BenchRow& r) { return hash(r.visHash); }}};
+  if (radiosity) {
+    columns.push_back({"radiosity s", "--:", [](const BenchRow& r) {
+                         return cell(r.radiositySeconds, "{:.2f}");
+                       }});
+    columns.push_back(
+        {"links", "--:", [](const BenchRow& r) { return countCell(widen(r.radiosityLinks)); }});
+    columns.push_back(
+        {"radiosity hash", "---", [&](const BenchRow& r) { return hash(r.radiosityHash); }});
+  }
+  columns.push_back(
+      {"PVS s", "--:", [](const BenchRow& r) { return cell(r.pvsSeconds, "{:.2f}"); }});
+  columns.push_back(
+      {"PVS leafs", "--:", [](const BenchRow& r) { return countCell(widen(r.pvsLeafs)); }});
+  columns.push_back(
+      {"PVS mean leafs", "--:", [](const BenchRow& r) { return cell(r.pvsMeanLeafs, "{:.1f}"); }});
+  columns.push_back({"PVS hash", "---", [&](const BenchRow& r) { return hash(r.pvsHash); }});
+  columns.push_back({"checks", "---", [](const BenchRow& r) {
+                       if (!r.failures.empty())
+                         return fmt::format("**FAILED** ({})", r.failures.size());
+                       return std::string(r.notes.empty() ? "ok" : "ok, partial");
+                     }});
+
+  std::string out = "|", rule = "|";
+  for (const Column& c : columns) {
+    out += fmt::format(" {} |", c.heading);
+    rule += fmt::format("{}|", c.align);
+  }
+  out += "\n" + rule + "\n";
   for (const BenchRow& r : rows) {
-    const std::string status =
-        !r.failures.empty() ? fmt::format("**FAILED** ({})", r.failures.size())
-                            : (r.notes.empty() ? "ok" : "ok, partial");
-    out += fmt::format(
-        "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} "
-        "| {} |\n",
-        r.name, countCell(std::optional<uint64_t>(r.patches)), cell(r.loadSeconds, "{:.2f}"),
-        cell(r.bspSeconds, "{:.2f}"), cell(r.portalSeconds, "{:.2f}"), cell(r.visSeconds, "{:.2f}"),
-        cell(r.radiositySeconds, "{:.2f}"), countCell(widen(r.cells)), countCell(widen(r.portals)),
-        countCell(r.pairsListed), countCell(r.pairsVisible), countCell(r.pairsPartial),
-        cell(r.meanBlockers, "{:.2f}"), r.visHash.empty() ? "—" : "`" + r.visHash + "`",
-        cell(r.pvsSeconds, "{:.2f}"), countCell(widen(r.pvsLeafs)),
-        cell(r.pvsMeanLeafs, "{:.1f}"), r.pvsHash.empty() ? "—" : "`" + r.pvsHash + "`", status);
+    out += "|";
+    for (const Column& c : columns) out += fmt::format(" {} |", c.value(r));
+    out += "\n";
   }
   std::string notes;
   for (const BenchRow& r : rows) {
@@ -104,33 +142,34 @@ std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
 }
 
 nlohmann::json benchRowJson(const BenchRow& r) {
-  return {{"scene", r.name},
-          {"kind", r.kind},
-          {"patches", r.patches},
-          {"seconds",
-           {{"load", orNull(r.loadSeconds)},
-            {"bsp", orNull(r.bspSeconds)},
-            {"portals", orNull(r.portalSeconds)},
-            {"visibility", orNull(r.visSeconds)},
-            {"radiosity", orNull(r.radiositySeconds)},
-            {"pvs", orNull(r.pvsSeconds)}}},
-          {"cells", orNull(r.cells)},
-          {"portals", orNull(r.portals)},
-          {"pairs_listed", orNull(r.pairsListed)},
-          {"pairs_visible", orNull(r.pairsVisible)},
-          {"pairs_partial", orNull(r.pairsPartial)},
-          {"mean_blockers_per_partial", orNull(r.meanBlockers)},
-          {"radiosity_links", orNull(r.radiosityLinks)},
-          {"pvs_leafs", orNull(r.pvsLeafs)},
-          {"pvs_mean_leafs_visible", orNull(r.pvsMeanLeafs)},
-          {"visibility_hash", r.visHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.visHash)},
-          {"radiosity_hash",
-           r.radiosityHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.radiosityHash)},
-          {"pvs_hash", r.pvsHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.pvsHash)},
-          {"checks_passed", r.checks},
-          {"failures", r.failures},
-          {"notes", r.notes},
-          {"ok", r.failures.empty()}};
+  return {
+      {"scene", r.name},
+      {"kind", r.kind},
+      {"patches", r.patches},
+      {"seconds",
+       {{"load", orNull(r.loadSeconds)},
+        {"bsp", orNull(r.bspSeconds)},
+        {"portals", orNull(r.portalSeconds)},
+        {"visibility", orNull(r.visSeconds)},
+        {"radiosity", orNull(r.radiositySeconds)},
+        {"pvs", orNull(r.pvsSeconds)}}},
+      {"cells", orNull(r.cells)},
+      {"portals", orNull(r.portals)},
+      {"pairs_listed", orNull(r.pairsListed)},
+      {"pairs_visible", orNull(r.pairsVisible)},
+      {"pairs_partial", orNull(r.pairsPartial)},
+      {"mean_blockers_per_partial", orNull(r.meanBlockers)},
+      {"radiosity_links", orNull(r.radiosityLinks)},
+      {"pvs_leafs", orNull(r.pvsLeafs)},
+      {"pvs_mean_leafs_visible", orNull(r.pvsMeanLeafs)},
+      {"visibility_hash", r.visHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.visHash)},
+      {"radiosity_hash",
+       r.radiosityHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.radiosityHash)},
+      {"pvs_hash", r.pvsHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.pvsHash)},
+      {"checks_passed", r.checks},
+      {"failures", r.failures},
+      {"notes", r.notes},
+      {"ok", r.failures.empty()}};
 }
 
 }  // namespace gv::cli

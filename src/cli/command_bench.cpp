@@ -28,12 +28,14 @@ constexpr size_t kQuickOffices = 2;
 /// The maps run by default: small enough for the default budget (the others' visibility and
 /// PVS take minutes); --all-maps runs every .map in the directory.
 const char* const kDefaultMaps[] = {"qbspfeatures", "light_general", "E1M1-edited-ents"};
+constexpr size_t kQuickMaps = 2;
 
 /// The markers of the section --update-docs rewrites.
 constexpr const char* kDocsBegin = "<!-- bench:begin -->";
 constexpr const char* kDocsEnd = "<!-- bench:end -->";
 
-std::vector<std::filesystem::path> mapsToRun(const std::string& dir, bool all, bool explicitDir) {
+std::vector<std::filesystem::path> mapsToRun(const std::string& dir, bool all, bool quick,
+                                             bool explicitDir) {
   namespace fs = std::filesystem;
   std::vector<fs::path> maps;
   if (!fs::is_directory(dir)) {
@@ -45,8 +47,8 @@ std::vector<std::filesystem::path> mapsToRun(const std::string& dir, bool all, b
       if (e.path().extension() == ".map") maps.push_back(e.path());
     std::sort(maps.begin(), maps.end());
   } else {
-    for (const char* name : kDefaultMaps) {
-      const fs::path p = fs::path(dir) / (std::string(name) + ".map");
+    for (size_t i = 0; i < (quick ? kQuickMaps : std::size(kDefaultMaps)); ++i) {
+      const fs::path p = fs::path(dir) / (std::string(kDefaultMaps[i]) + ".map");
       if (fs::exists(p)) maps.push_back(p);
     }
   }
@@ -65,9 +67,10 @@ std::string readWhole(const std::string& path) {
 
 Action addBenchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "bench", "Time the pipeline on a size sweep of generated offices and the shared Quake maps; "
-               "check every result, print a table with result hashes, optionally refresh a "
-               "markdown file's bench section. Exit code 1 when a check fails");
+      "bench",
+      "Time the pipeline on a size sweep of generated offices and the shared Quake maps; "
+      "check every result, print a table with result hashes, optionally refresh a "
+      "markdown file's bench section. Exit code 1 when a check fails");
   struct State {
     bool quick = false, allMaps = false, noMaps = false, noOffices = false, json = false;
     std::vector<size_t> officePatches;
@@ -75,7 +78,9 @@ Action addBenchCommand(CLI::App& app) {
     BenchOptions options;
   };
   auto s = std::make_shared<State>();
-  cmd->add_flag("--quick", s->quick, "Only the two smallest offices (~400 and ~1,000 patches)");
+  cmd->add_flag("--quick", s->quick,
+                "Only the two smallest offices (~400 and ~1,000 patches) and the two smallest "
+                "maps (qbspfeatures, light_general)");
   auto* mapsOption =
       cmd->add_option("--maps", s->maps, "Directory of Quake .map files (with their .prt)")
           ->capture_default_str();
@@ -109,17 +114,17 @@ Action addBenchCommand(CLI::App& app) {
     if (s->noOffices) sweep.clear();
     for (const size_t target : sweep) {
       const OfficeOptions office = officeOptionsForPatchCount(target);
-      const std::string name = fmt::format("office {}x{}x{}", office.floors, office.rows,
-                                           office.columns);
-      rows.push_back(benchScene(name, "office", [office] { return generateOffice(office); },
-                                s->options));
+      const std::string name =
+          fmt::format("office {}x{}x{}", office.floors, office.rows, office.columns);
+      rows.push_back(benchScene(
+          name, "office", [office] { return generateOffice(office); }, s->options));
       if (!s->json) fmt::print(stderr, "bench: {} done\n", name);
     }
     if (!s->noMaps) {
-      for (const auto& map : mapsToRun(s->maps, s->allMaps, mapsOption->count() > 0)) {
+      for (const auto& map : mapsToRun(s->maps, s->allMaps, s->quick, mapsOption->count() > 0)) {
         const std::string path = map.string();
-        BenchRow row = benchScene(map.stem().string(), "map", [path] { return importMap(path); },
-                                  s->options);
+        BenchRow row = benchScene(
+            map.stem().string(), "map", [path] { return importMap(path); }, s->options);
         std::filesystem::path prt = map;
         prt.replace_extension(".prt");
         if (std::filesystem::exists(prt)) benchPvs(prt.string(), s->options, row);
@@ -131,8 +136,8 @@ Action addBenchCommand(CLI::App& app) {
     const MachineInfo machine = describeMachine();
     const std::string date = todayUtc();
     const std::string table = benchTableMarkdown(rows);
-    const bool ok = std::all_of(rows.begin(), rows.end(),
-                                [](const BenchRow& r) { return r.failures.empty(); });
+    const bool ok =
+        std::all_of(rows.begin(), rows.end(), [](const BenchRow& r) { return r.failures.empty(); });
     if (s->json) {
       nlohmann::json j = {{"machine", machine.describe()},
                           {"date", date},
@@ -159,8 +164,8 @@ Action addBenchCommand(CLI::App& app) {
           s->quick ? " --quick" : "", s->allMaps ? " --all-maps" : "", s->updateDocs,
           machine.describe(), date, s->options.maxSeconds, kBenchVerifyRays, kBenchVerifySegments,
           table);
-      const std::string text = replaceMarkedSection(readWhole(s->updateDocs), kDocsBegin,
-                                                    kDocsEnd, body);
+      const std::string text =
+          replaceMarkedSection(readWhole(s->updateDocs), kDocsBegin, kDocsEnd, body);
       writeTextFile(text, s->updateDocs);
     }
     return ok ? 0 : 1;

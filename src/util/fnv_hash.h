@@ -2,12 +2,12 @@
 // run shows it computed the same answer.
 #pragma once
 
+#include <fmt/core.h>
+
 #include <cstdint>
 #include <string>
 #include <string_view>
 #include <type_traits>
-
-#include <fmt/core.h>
 
 namespace gv {
 

@@ -35,7 +35,8 @@ json runJson(const std::string& args, int code = 0) {
 }
 
 void expectKeys(const json& j, std::initializer_list<const char*> keys) {
-  for (const char* k : keys) EXPECT_TRUE(j.contains(k)) << "missing key " << k << " in " << j.dump();
+  for (const char* k : keys)
+    EXPECT_TRUE(j.contains(k)) << "missing key " << k << " in " << j.dump();
 }
 
 std::string readText(const std::filesystem::path& p) {
@@ -68,8 +69,8 @@ TEST_F(JsonCliTest, CellsVisVerifyPrintOneObject) {
   const json vis = runJson("vis " + quoted(obj_) + " -o " + quoted(dir_ / "vis") + " --json");
   expectKeys(vis, {"scene", "subdivision", "visibility"});
 
-  const json verify = runJson("verify " + quoted(dir_ / "vis") +
-                              " --rays 3000 --segments 500 --json");
+  const json verify =
+      runJson("verify " + quoted(dir_ / "vis") + " --rays 3000 --segments 500 --json");
   expectKeys(verify, {"rays", "missing_pairs", "segments", "blocked_visible", "missing_blockers",
                       "ok", "examples"});
   EXPECT_EQ(verify["rays"], 3000);
@@ -86,10 +87,10 @@ TEST_F(JsonCliTest, RadiosityPrintsItsStats) {
 
 TEST(JsonCli, PvsStatsMatchTheWrittenRows) {
   const auto dir = test::scratchDir();
-  const json j = runJson("pvs " + quoted(std::filesystem::path(kQuakeDir + "qbspfeatures.prt")) + " -o " +
-                         quoted(dir / "pvs.txt") + " --json");
-  expectKeys(j, {"leafs", "clusters", "portals", "mean_leafs_visible", "stabbing_tests",
-                 "seconds"});
+  const json j = runJson("pvs " + quoted(std::filesystem::path(kQuakeDir + "qbspfeatures.prt")) +
+                         " -o " + quoted(dir / "pvs.txt") + " --json");
+  expectKeys(j,
+             {"leafs", "clusters", "portals", "mean_leafs_visible", "stabbing_tests", "seconds"});
   // Independently of the JSON: the rows written, one per leaf, `L n v1 ... vn`.
   std::ifstream in(dir / "pvs.txt");
   size_t rows = 0, total = 0;
@@ -111,9 +112,9 @@ TEST(BenchCli, SmallOfficeIsCheckedAndHashedTheSameTwice) {
   EXPECT_EQ(a["ok"], true);
   ASSERT_EQ(a["scenes"].size(), 1u);
   const json& s = a["scenes"][0];
-  expectKeys(s, {"scene", "patches", "seconds", "cells", "portals", "pairs_listed",
-                 "pairs_visible", "pairs_partial", "mean_blockers_per_partial", "visibility_hash",
-                 "checks_passed", "failures", "notes"});
+  expectKeys(s, {"scene", "patches", "seconds", "cells", "portals", "pairs_listed", "pairs_visible",
+                 "pairs_partial", "mean_blockers_per_partial", "visibility_hash", "checks_passed",
+                 "failures", "notes"});
   EXPECT_EQ(s["pairs_listed"].get<uint64_t>(),
             s["pairs_visible"].get<uint64_t>() + s["pairs_partial"].get<uint64_t>());
   const auto checks = s["checks_passed"].get<std::vector<std::string>>();
@@ -177,8 +178,9 @@ TEST(ProgressOutput, NoneWhenStderrIsNotATerminal) {
   EXPECT_EQ(vis.output.find("BSP ["), std::string::npos) << vis.output;
   const auto cells = test::runCli("cells " + quoted(obj) + " -o " + quoted(dir / "cells"));
   EXPECT_EQ(cells.output.find('\r'), std::string::npos) << cells.output;
-  const auto pvs = test::runCli("pvs " + quoted(std::filesystem::path(kQuakeDir + "qbspfeatures.prt")) + " -o " +
-                                quoted(dir / "pvs.txt"));
+  const auto pvs =
+      test::runCli("pvs " + quoted(std::filesystem::path(kQuakeDir + "qbspfeatures.prt")) + " -o " +
+                   quoted(dir / "pvs.txt"));
   EXPECT_EQ(pvs.output.find('\r'), std::string::npos) << pvs.output;
 }
 

@@ -26,7 +26,9 @@ std::string contents(std::FILE* f) {
   return out;
 }
 
-size_t count(const std::string& s, char c) { return static_cast<size_t>(std::count(s.begin(), s.end(), c)); }
+size_t count(const std::string& s, char c) {
+  return static_cast<size_t>(std::count(s.begin(), s.end(), c));
+}
 
 TEST(ProgressBarTest, LineShowsPercentElapsedAndEta) {
   const std::string half = progressLine("BSP", 0.5, 2.0);
