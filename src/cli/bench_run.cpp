@@ -33,6 +33,10 @@ class Budget {
   explicit Budget(double maxSeconds) : maxSeconds_(maxSeconds) {}
   bool spent() const { return secondsSince(start_) > maxSeconds_; }
   double maxSeconds() const { return maxSeconds_; }
+  Clock::time_point deadline() const {
+    return start_ + std::chrono::duration_cast<Clock::duration>(
+                        std::chrono::duration<double>(maxSeconds_));
+  }
 
  private:
   Clock::time_point start_ = Clock::now();
@@ -140,7 +144,13 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
   const Budget budget(options.maxSeconds);
 
   auto t0 = Clock::now();
-  const Scene scene = make();
+  Scene scene;
+  try {
+    scene = make();
+  } catch (const std::exception& e) {  // bad input: this row fails, the others still run
+    row.failures.push_back(fmt::format("load: {}", e.what()));
+    return row;
+  }
   row.loadSeconds = secondsSince(t0);
   row.patches = scene.patches.size();
   if (budget.spent()) {
@@ -152,7 +162,7 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
   try {
     ProgressBar bar(name + ": BSP");
     BspOptions bsp;
-    bsp.minCoverage = kVisibilityMinCoverage;  // the cells `vis` uses
+    bsp.minCoverage = options.minCoverage;
     bsp.progress = [&](double f) {
       bar.update(f);
       if (budget.spent()) throw BudgetExceeded{};
@@ -174,12 +184,18 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
 
   VisibilityGraph graph;
   try {
-    ProgressBar bar(name + ": visibility");
+    ProgressBar cellBar(name + ": visibility, cells");
+    ProgressBar bar(name + ": visibility, patches");
     PropagationOptions propagation;
     propagation.threads = options.threads;
+    propagation.cellProgress = watch(cellBar, budget);
     propagation.progress = watch(bar, budget);
+    propagation.deadline = budget.deadline();
     graph = computeVisibility(scene, sub, propagation);
   } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("vis", budget));
+    return row;
+  } catch (const PropagationDeadlineExceeded&) {
     row.notes.push_back(overBudget("vis", budget));
     return row;
   }
@@ -235,7 +251,13 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
 void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow& row) {
   const Budget budget(options.maxSeconds);
   const auto t0 = Clock::now();
-  const PrtFile prt = readPrtFile(prtPath);
+  PrtFile prt;
+  try {
+    prt = readPrtFile(prtPath);
+  } catch (const std::exception& e) {
+    row.failures.push_back(fmt::format("PVS: {}", e.what()));
+    return;
+  }
   LeafPvsResult pvs;
   try {
     ProgressBar bar(row.name + ": PVS");

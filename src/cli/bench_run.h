@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bsp/bsp_tree.h"
 #include "scene/scene.h"
 
 namespace gv::cli {
@@ -27,6 +28,7 @@ struct BenchOptions {
   double maxSeconds = 30;             ///< per scene; later stages are skipped once exceeded
   bool radiosity = false;             ///< also solve radiosity (rays mode, 16 rays per link)
   size_t radiosityMaxPatches = 3000;  ///< larger scenes skip radiosity (its initial links are n²)
+  double minCoverage = kVisibilityMinCoverage;  ///< BSP stop rule (`vis`'s default)
   int threads = 0;                    ///< propagation and PVS threads (0 = all cores)
 };
 

@@ -97,6 +97,10 @@ Action addBenchCommand(CLI::App& app) {
                   "stages skipped (the PVS has a budget of its own)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--min-coverage", s->options.minCoverage,
+                  "BSP stop rule (see `globalvis cells --help`); the default is `vis`'s")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--radiosity", s->options.radiosity,
                 "Also solve radiosity (rays visibility, 16 rays per link)");
   cmd->add_option("--threads", s->options.threads, "Worker threads (0 = all cores)")

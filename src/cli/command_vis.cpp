@@ -45,7 +45,9 @@ Action addVisCommand(CLI::App& app) {
     if (bspBar.enabled()) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
     const Subdivision sub = buildSubdivision(scene, s->bsp);
     bspBar.finish();
+    ProgressBar cellBar("visibility (per source cell)");
     ProgressBar visBar("visibility (per source patch)");
+    s->propagation.cellProgress = cellBar.callback();
     s->propagation.progress = visBar.callback();
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
     visBar.finish();

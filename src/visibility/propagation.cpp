@@ -83,8 +83,23 @@ using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
 /// Per-thread state of the patch-level search. Beyond the stabbing test it prunes a branch when
 /// every cell the branch might still reach (MightSee) holds only patches already seen in every
 /// way they can be seen: the search's only output is those flags, so nothing is lost.
+/// Throws PropagationDeadlineExceeded once `deadline` has passed; reads the clock every 64 calls
+/// (a search step costs far more than a clock read, but there are millions of them).
+class DeadlineCheck {
+ public:
+  Clock::time_point deadline = Clock::time_point::max();
+  void operator()() {
+    if (deadline == Clock::time_point::max() || ++calls_ % 64 != 0) return;
+    if (Clock::now() > deadline) throw PropagationDeadlineExceeded();
+  }
+
+ private:
+  uint32_t calls_ = 0;
+};
+
 class PatchSearch {
  public:
+  DeadlineCheck checkDeadline;
   PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
               const Placements& placements, const MightSee& might, const Tolerance& tol)
       : sub_(sub), cellPatches_(cellPatches), placements_(placements), might_(might),
@@ -173,6 +188,7 @@ class PatchSearch {
 
   /// `reach`: the cells this branch may still reach (null: all).
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    checkDeadline();
     onPath_[cell] = 1;
     for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
     if (stack_.size() <= depth) stack_.resize(depth + 1);
@@ -224,6 +240,7 @@ struct CellSearchResult {
 /// reach is already known to be visible from the source.
 class CellSearch {
  public:
+  DeadlineCheck checkDeadline;
   CellSearch(const Subdivision& sub, const MightSee& might, const Tolerance& tol)
       : sub_(sub), might_(might), stabber_(tol), onPath_(sub.cells.size(), 0) {}
 
@@ -241,6 +258,7 @@ class CellSearch {
 
  private:
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    checkDeadline();
     onPath_[cell] = 1;
     if (stack_.size() <= depth) stack_.resize(depth + 1);
     for (uint32_t pid : sub_.cells[cell].portals) {
@@ -337,9 +355,25 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
 
   // Cell to cell (§4.1).
   std::vector<CellSearchResult> cellResults(sub.cells.size());
+  std::atomic<size_t> cellsDone{0};
+  std::mutex cellProgressMutex;
+  size_t cellsReported = 0;
   parallelFor(
-      sub.cells.size(), threads, [&] { return CellSearch(sub, might, tol); },
-      [&](CellSearch& w, size_t c) { cellResults[c] = w.run(static_cast<uint32_t>(c)); });
+      sub.cells.size(), threads, [&] {
+        CellSearch w(sub, might, tol);
+        w.checkDeadline.deadline = options.deadline;
+        return w;
+      },
+      [&](CellSearch& w, size_t c) {
+        cellResults[c] = w.run(static_cast<uint32_t>(c));
+        const size_t d = ++cellsDone;
+        if (options.cellProgress && (d % 16 == 0 || d == sub.cells.size())) {
+          // Under the lock, the count now (not d): reports rise even when threads race.
+          std::lock_guard lock(cellProgressMutex);
+          const size_t now = cellsDone.load();
+          if (now > cellsReported) options.cellProgress(cellsReported = now, sub.cells.size());
+        }
+      });
   uint64_t lengthSum = 0;
   for (const CellSearchResult& r : cellResults) {
     st.cellPairsVisible += r.reached;
@@ -378,7 +412,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
-      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, might, tol); },
+      n, threads, [&] {
+        PatchSearch w(sub, cellPatches, placements, might, tol);
+        w.checkDeadline.deadline = options.deadline;
+        return w;
+      },
       [&](PatchSearch& w, size_t s) {
         seen[s] = w.run(static_cast<uint32_t>(s));
         const size_t d = ++done;

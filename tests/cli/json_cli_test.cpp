@@ -137,6 +137,25 @@ TEST(BenchCli, MapRowHasItsPvs) {
   EXPECT_EQ(j["ok"], true);
 }
 
+TEST(BenchCli, ABadMapFailsItsRowAndTheExitCode) {
+  const auto dir = test::scratchDir();
+  test::writeFile(dir / "broken.map", "{\n\"classname\" \"worldspawn\"\n{\n( 0 0 0 ) ( 1 0 0 )\n");
+  std::filesystem::copy_file(kQuakeDir + "qbspfeatures.prt", dir / "broken.prt");
+  const json j = runJson("bench --no-offices --all-maps --maps " + quoted(dir) + " --json", 1);
+  EXPECT_EQ(j["ok"], false);
+  ASSERT_EQ(j["scenes"].size(), 1u);
+  const json& s = j["scenes"][0];
+  EXPECT_EQ(s["ok"], false);
+  ASSERT_FALSE(s["failures"].empty());
+  // The importer's message names the file and line.
+  EXPECT_NE(s["failures"][0].get<std::string>().find("broken.map:"), std::string::npos)
+      << s["failures"];
+  // Text mode says so too.
+  const auto text = test::runCli("bench --no-offices --all-maps --maps " + quoted(dir));
+  EXPECT_EQ(text.exitCode, 1);
+  EXPECT_NE(text.output.find("FAILED"), std::string::npos) << text.output;
+}
+
 TEST(BenchCli, BudgetSkipsStagesAndSaysSo) {
   const json j = runJson("bench --no-maps --office-patches 150 --max-seconds 1e-9 --json");
   const json& s = j["scenes"][0];
