@@ -34,8 +34,8 @@ class Budget {
   bool spent() const { return secondsSince(start_) > maxSeconds_; }
   double maxSeconds() const { return maxSeconds_; }
   Clock::time_point deadline() const {
-    return start_ + std::chrono::duration_cast<Clock::duration>(
-                        std::chrono::duration<double>(maxSeconds_));
+    return start_ +
+           std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(maxSeconds_));
   }
 
  private:
@@ -186,10 +186,12 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
   try {
     ProgressBar cellBar(name + ": visibility, cells");
     ProgressBar bar(name + ": visibility, patches");
+    ProgressBar blockerBar(name + ": visibility, blockers");
     PropagationOptions propagation;
     propagation.threads = options.threads;
     propagation.cellProgress = watch(cellBar, budget);
     propagation.progress = watch(bar, budget);
+    propagation.blockerProgress = watch(blockerBar, budget);
     propagation.deadline = budget.deadline();
     graph = computeVisibility(scene, sub, propagation);
   } catch (const BudgetExceeded&) {

@@ -25,11 +25,11 @@ inline constexpr double kBenchVolumeTolerance = 1e-6;
 
 /// What to run on each scene.
 struct BenchOptions {
-  double maxSeconds = 30;             ///< per scene; later stages are skipped once exceeded
+  double maxSeconds = 60;             ///< per scene; later stages are skipped once exceeded
   bool radiosity = false;             ///< also solve radiosity (rays mode, 16 rays per link)
   size_t radiosityMaxPatches = 3000;  ///< larger scenes skip radiosity (its initial links are n²)
   double minCoverage = kVisibilityMinCoverage;  ///< BSP stop rule (`vis`'s default)
-  int threads = 0;                    ///< propagation and PVS threads (0 = all cores)
+  int threads = 0;                              ///< propagation and PVS threads (0 = all cores)
 };
 
 /// One scene's figures. Empty optionals: the stage did not run (see `notes`).

@@ -106,9 +106,13 @@ Action addRadiosityCommand(CLI::App& app) {
       if (progress) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
       const Subdivision sub = buildSubdivision(scene, s->bsp);
       bspBar.finish();
+      ProgressBar cellBar("visibility (per source cell)", progress);
       ProgressBar visBar("visibility (per source patch)", progress);
       PropagationOptions propagation;
+      propagation.cellProgress = cellBar.callback();
       propagation.progress = visBar.callback();
+      ProgressBar blockerBar("blocker lists (per source patch)", progress);
+      propagation.blockerProgress = blockerBar.callback();
       graph = computeVisibility(scene, sub, propagation);
       visBar.finish();
       visibilitySeconds = secondsSince(t0);

@@ -49,6 +49,8 @@ Action addVisCommand(CLI::App& app) {
     ProgressBar visBar("visibility (per source patch)");
     s->propagation.cellProgress = cellBar.callback();
     s->propagation.progress = visBar.callback();
+    ProgressBar blockerBar("blocker lists (per source patch)");
+    s->propagation.blockerProgress = blockerBar.callback();
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
     visBar.finish();
 

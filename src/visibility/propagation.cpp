@@ -446,9 +446,21 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::vector<Aabb> patchBoxes(n);
   for (size_t p = 0; p < n; ++p) patchBoxes[p] = scene.patches[p].polygon.bounds();
   std::vector<std::vector<Interaction>> perSource(n);
+  std::atomic<size_t> sourcesDone{0};
+  std::mutex blockerProgressMutex;
+  size_t sourcesReported = 0;
   parallelFor(
       n, threads, [] { return 0; },
       [&](int&, size_t si) {
+        if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
+          throw PropagationDeadlineExceeded();
+        if (options.blockerProgress) {
+          const size_t d = sourcesDone.load();
+          if (d % 64 == 0) {
+            std::lock_guard lock(blockerProgressMutex);
+            if (d > sourcesReported) options.blockerProgress(sourcesReported = d, n);
+          }
+        }
         const auto s = static_cast<uint32_t>(si);
         const ConvexPolygon& sp = scene.patches[s].polygon;
         for (const auto& [t, f] : seen[s].seen) {
@@ -480,7 +492,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           }
           perSource[s].push_back(std::move(in));
         }
+        ++sourcesDone;
       });
+  if (options.blockerProgress) options.blockerProgress(n, n);
   for (auto& v : perSource)
     for (Interaction& in : v) graph.interactions.push_back(std::move(in));
   uint64_t blockerSum = 0;

@@ -24,6 +24,9 @@ struct PropagationOptions {
   /// Called with (done, total) source cells of the cell-to-cell search (§4.1, before the patch
   /// searches) now and then, from one thread at a time.
   std::function<void(size_t, size_t)> cellProgress;
+  /// Called with (done, total) source patches of the blocker-list phase (§5, after the patch
+  /// searches) now and then, from one thread at a time, rising.
+  std::function<void(size_t, size_t)> blockerProgress;
   /// The searches give up (computeVisibility throws PropagationDeadlineExceeded) once the clock
   /// passes this: a time budget that also holds inside one long search (`globalvis bench`).
   Clock::time_point deadline = Clock::time_point::max();

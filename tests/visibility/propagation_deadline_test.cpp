@@ -1,5 +1,5 @@
-// PropagationOptions::deadline and cellProgress: a passed deadline stops the searches with
-// PropagationDeadlineExceeded; the callbacks change nothing in the result.
+// PropagationOptions::deadline, cellProgress and blockerProgress: a passed deadline stops the
+// searches with PropagationDeadlineExceeded; the callbacks change nothing in the result.
 #include <gtest/gtest.h>
 
 #include "bsp/subdivision.h"
@@ -27,10 +27,17 @@ TEST(PropagationDeadlineTest, PassedDeadlineThrowsAndCallbacksChangeNothing) {
     lastCells = done;
     cellTotal = total;
   };
+  size_t lastSources = 0;
+  watched.blockerProgress = [&](size_t done, size_t total) {
+    EXPECT_GT(done, lastSources);
+    EXPECT_EQ(total, scene.patches.size());
+    lastSources = done;
+  };
   watched.deadline = Clock::now() + std::chrono::hours(1);
   const VisibilityGraph g = computeVisibility(scene, sub, watched);
   EXPECT_EQ(cellTotal, sub.cells.size());
   EXPECT_EQ(lastCells, sub.cells.size());
+  EXPECT_EQ(lastSources, scene.patches.size());
   ASSERT_EQ(g.interactions.size(), plain.interactions.size());
   for (size_t i = 0; i < g.interactions.size(); ++i) {
     EXPECT_EQ(g.interactions[i].s, plain.interactions[i].s);
