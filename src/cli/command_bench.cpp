@@ -157,7 +157,7 @@ Action addBenchCommand(CLI::App& app) {
     }
     if (!s->updateDocs.empty()) {
       const std::string body = fmt::format(
-          "## `globalvis bench` ({})\n\n"
+          "### `globalvis bench` table ({})\n\n"
           "Written by `make bench-scenes` (`globalvis bench{}{} --update-docs {}`); do not edit by "
           "hand. Machine: {} (shared with other jobs: times are indicative). Date {}. Budget {:g} "
           "s per scene. Every stage's result is checked before it is reported (cells fill the "
