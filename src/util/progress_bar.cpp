@@ -34,8 +34,11 @@ std::string progressLine(const std::string& label, double fraction, double elaps
   return line;
 }
 
-ProgressBar::ProgressBar(std::string label, bool enabled, std::FILE* out)
-    : label_(std::move(label)), enabled_(enabled && out != nullptr), out_(out) {}
+ProgressBar::ProgressBar(std::string label, bool enabled, std::FILE* out, double firstDrawSeconds)
+    : label_(std::move(label)),
+      enabled_(enabled && out != nullptr),
+      out_(out),
+      firstDrawSeconds_(firstDrawSeconds) {}
 
 ProgressBar::~ProgressBar() {
   // An abandoned stage (an exception) leaves its bar where it was, on a line of its own.
@@ -52,6 +55,7 @@ void ProgressBar::update(double fraction) {
   // The last update ends the line, so the next output starts on a fresh one.
   if (fraction >= 1) return finish();
   const auto now = Clock::now();
+  if (!drawn_ && std::chrono::duration<double>(now - start_).count() < firstDrawSeconds_) return;
   if (drawn_ && fraction < 1 &&
       std::chrono::duration<double>(now - lastDraw_).count() < kProgressRedrawSeconds)
     return;
@@ -60,6 +64,10 @@ void ProgressBar::update(double fraction) {
 
 void ProgressBar::note(const std::string& line) {
   if (!enabled_) return;
+  if (!drawn_) {
+    fmt::print(out_, "{}\n", line);
+    return;
+  }
   fmt::print(out_, "\r{}\r{}\n", std::string(lastWidth_, ' '), line);
   lastWidth_ = 0;
   if (!finished_) draw(fraction_);
@@ -67,10 +75,12 @@ void ProgressBar::note(const std::string& line) {
 
 void ProgressBar::finish() {
   if (!enabled_ || finished_) return;
+  finished_ = true;
+  if (!drawn_) return;  // over before it was worth showing
   draw(1.0);
   fmt::print(out_, "\n");
   std::fflush(out_);
-  finished_ = true;
+  lastWidth_ = 0;  // the cursor is on a fresh line
 }
 
 std::function<void(size_t, size_t)> ProgressBar::callback() {

@@ -14,6 +14,10 @@ namespace gv {
 /// Redraws closer together than this are skipped (the bar would only flicker).
 inline constexpr double kProgressRedrawSeconds = 0.1;
 
+/// A stage that ends sooner than this after its bar was made never shows it: most stages take
+/// milliseconds on small scenes, and a bar flashing by is noise.
+inline constexpr double kProgressFirstDrawSeconds = 0.5;
+
 /// Cells of the bar between its brackets.
 inline constexpr int kProgressBarWidth = 30;
 
@@ -27,9 +31,11 @@ std::string progressLine(const std::string& label, double fraction, double elaps
 /// One stage's progress. Disabled bars do nothing at all, so callers need no `if`.
 class ProgressBar {
  public:
-  /// A bar labelled `label` drawn on `out` when `enabled` (by default: stderr is a terminal).
+  /// A bar labelled `label` drawn on `out` when `enabled` (by default: stderr is a terminal),
+  /// first drawn `firstDrawSeconds` after construction.
   explicit ProgressBar(std::string label, bool enabled = stderrIsTerminal(),
-                       std::FILE* out = stderr);
+                       std::FILE* out = stderr,
+                       double firstDrawSeconds = kProgressFirstDrawSeconds);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
@@ -41,8 +47,8 @@ class ProgressBar {
   void update(double fraction);
   /// Prints `line` on its own line (clearing the bar first), then redraws the bar.
   void note(const std::string& line);
-  /// Draws 100 % and ends the line; later updates are ignored. (The destructor only ends the
-  /// line of a bar left unfinished, e.g. by an exception.)
+  /// Draws 100 % and ends the line if the bar was shown; later updates are ignored. (The
+  /// destructor only ends the line of a bar left unfinished, e.g. by an exception.)
   void finish();
   bool enabled() const { return enabled_; }
   /// `update(done, total)` as a callback, for PropagationOptions::progress and the like;
@@ -55,6 +61,7 @@ class ProgressBar {
   std::string label_;
   bool enabled_;
   std::FILE* out_;
+  double firstDrawSeconds_;
   Clock::time_point start_ = Clock::now();
   Clock::time_point lastDraw_{};
   bool drawn_ = false, finished_ = false;

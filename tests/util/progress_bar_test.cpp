@@ -64,7 +64,7 @@ TEST(ProgressBarTest, RedrawsAtMostTenTimesASecondAndEndsTheLine) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
   {
-    ProgressBar bar("work", true, f);
+    ProgressBar bar("work", true, f, 0);
     auto cb = bar.callback();
     ASSERT_TRUE(cb);
     for (size_t i = 0; i < 100000; ++i) cb(i, 100000);  // far under 0.1 s
@@ -79,11 +79,23 @@ TEST(ProgressBarTest, RedrawsAtMostTenTimesASecondAndEndsTheLine) {
   std::fclose(f);
 }
 
+TEST(ProgressBarTest, AStageShorterThanTheFirstDrawDelayShowsNothing) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    ProgressBar bar("short", true, f);  // the default delay
+    for (size_t i = 0; i <= 1000; ++i) bar.update(i, 1000);
+    bar.note("a line is still printed");
+  }
+  EXPECT_EQ(contents(f), "a line is still printed\n");
+  std::fclose(f);
+}
+
 TEST(ProgressBarTest, RedrawsAgainAfterTheInterval) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
   {
-    ProgressBar bar("slow", true, f);
+    ProgressBar bar("slow", true, f, 0);
     bar.update(1, 10);
     std::this_thread::sleep_for(std::chrono::duration<double>(kProgressRedrawSeconds * 1.5));
     bar.update(2, 10);
@@ -96,7 +108,7 @@ TEST(ProgressBarTest, NoteGoesOnItsOwnLine) {
   std::FILE* f = std::tmpfile();
   ASSERT_NE(f, nullptr);
   {
-    ProgressBar bar("n", true, f);
+    ProgressBar bar("n", true, f, 0);
     bar.update(0.5);
     bar.note("round 1 done");
   }
