@@ -1,6 +1,6 @@
 # The two commands of the README: `make run` and `make test`. Each installs the Debian packages
 # it needs (as root; otherwise prints the apt-get line), configures CMake, builds, then runs.
-# Other targets: build, build-asan, test-release, test-asan, bench, format, clean.
+# Other targets: build, build-asan, test-release, test-asan, bench, bench-scenes, format, clean.
 
 PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libtinyobjloader-dev libcli11-dev \
             nlohmann-json3-dev libfmt-dev libcgal-dev libembree-dev libtbb-dev libpng-dev \
@@ -12,7 +12,7 @@ SCENE_DIR := out
 
 FUZZ_SECONDS ?= 60
 
-.PHONY: run test deps build build-asan test-release test-asan bench fuzz format clean
+.PHONY: run test deps build build-asan test-release test-asan bench bench-scenes fuzz format clean
 
 run: build
 	@./scripts/run-default.sh $(BUILD)/globalvis $(SCENE_DIR)
@@ -43,6 +43,13 @@ test-asan: build-asan
 
 bench: build
 	@./$(BUILD)/globalvis_bench --benchmark_min_time=0.2
+
+# The whole pipeline on the office size sweep and the small shared Quake maps, every result
+# checked, into docs/BENCHMARKS.md's bench section. BENCH_ARGS=--quick: ~40 s; the default set
+# ~3 min (E1M1-edited-ents runs into its 60 s budgets).
+BENCH_ARGS ?=
+bench-scenes: build
+	@./$(BUILD)/globalvis bench $(BENCH_ARGS) --update-docs docs/BENCHMARKS.md
 
 # libFuzzer on the OBJ importer (clang + libclang-rt-14-dev); corpus grows in build-fuzz/corpus.
 fuzz: deps

@@ -75,6 +75,7 @@ class Builder {
       : options_(options), tree_(tree), tol_(tree.tol) {}
 
   void run(Work root) {
+    if (options_.progress) rootVolume_ = root.cell.volume();
     std::vector<Work> stack;
     stack.push_back(std::move(root));
     while (!stack.empty()) {
@@ -97,6 +98,10 @@ class Builder {
     link(work, leafChild(static_cast<uint32_t>(tree_.leaves.size())));
     tree_.leaves.push_back(std::move(leaf));
     tree_.depth = std::max(tree_.depth, work.depth);
+    if (options_.progress) {
+      doneVolume_ += tree_.leaves.back().shape.volume();
+      options_.progress(doneVolume_ / rootVolume_);
+    }
   }
 
   /// The fragments of `work` grouped by plane, largest total area first, without the planes
@@ -275,6 +280,7 @@ class Builder {
   const BspOptions& options_;
   BspTree& tree_;
   const Tolerance tol_;
+  double rootVolume_ = 1, doneVolume_ = 0;  ///< for options_.progress
 };
 
 }  // namespace

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "bsp/plane_set.h"
@@ -41,6 +42,9 @@ struct BspOptions {
   /// At most this many planes (those with the largest fragment area in the cell) are scored per
   /// cell; the others wait for a smaller cell. Bounds the cost per node on large scenes.
   int maxCandidates = 48;
+  /// Called after each leaf with the fraction of the root's volume in finished leaves (0..1];
+  /// may be empty (then no volumes are computed).
+  std::function<void(double)> progress;
 };
 
 /// A piece of a patch clipped to a BSP cell, on plane `plane` of the PlaneSet.

@@ -12,6 +12,7 @@
 #include "cli/output_files.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/progress_bar.h"
 
 namespace gv::cli {
 
@@ -23,6 +24,7 @@ Action addCellsCommand(CLI::App& app) {
   struct State {
     std::string scene, output;
     BspOptions options;
+    bool json = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
@@ -34,13 +36,24 @@ Action addCellsCommand(CLI::App& app) {
   cmd->add_option("--max-candidates", s->options.maxCandidates,
                   "Planes scored per cell (largest patch area first)")
       ->check(CLI::Range(1, 1'000'000));
+  cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   return [s] {
     const Scene scene = loadScene(s->scene);
+    ProgressBar bar("BSP");
+    if (bar.enabled()) s->options.progress = [&bar](double f) { bar.update(f); };
     const Subdivision sub = buildSubdivision(scene, s->options);
+    bar.finish();
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     writeCellsObj(sub, (dir / "cells.obj").string());
     writePortalsObj(sub, (dir / "portals.obj").string());
     writeJsonFile(statsJson(sub.stats), dir / "stats.json");
+    if (s->json) {
+      nlohmann::json j = statsJson(sub.stats);
+      j["scene"] = s->scene;
+      j["output"] = dir.string();
+      fmt::print("{}\n", j.dump(2));
+      return 0;
+    }
     const SubdivisionStats& st = sub.stats;
     fmt::print("patches {}  planes {}  leaf cells {}  portals {}\n", st.patches, st.planes,
                st.cells, st.portals);

@@ -6,8 +6,10 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "util/progress_bar.h"
 #include "util/timing.h"
 #include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
@@ -21,13 +23,14 @@ Action addPvsCommand(CLI::App& app) {
              "writes one line per leaf: L n v1 ... vn");
   struct State {
     std::string input, output;
-    bool serial = false, quiet = false, noLp = false, backClip = false;
+    bool serial = false, quiet = false, noLp = false, backClip = false, json = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
   cmd->add_option("-o,--output", s->output, "PVS text file to write")->required();
   cmd->add_flag("--serial", s->serial, "One thread (the output is the same either way)");
-  cmd->add_flag("-q,--quiet", s->quiet, "No progress on stderr");
+  cmd->add_flag("-q,--quiet", s->quiet, "No progress bar on stderr (there is none unless it is a terminal)");
+  cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   cmd->add_flag("--no-lp", s->noLp,
                 "Decide by separating-plane clipping only (faster, looser; still conservative)");
   cmd->add_flag("--back-clip", s->backClip,
@@ -41,17 +44,10 @@ Action addPvsCommand(CLI::App& app) {
     options.parallel = !s->serial;
     options.stabbing.useLinearProgram = !s->noLp;
     options.stabbing.backClip = s->backClip;
-    double lastReport = 0;
-    if (!s->quiet) {
-      // At most one line every 2 seconds, and only on runs long enough to need it.
-      options.progress = [&](size_t done, size_t total) {
-        const double t = elapsed();
-        if (t - lastReport < 2.0 || done == total) return;
-        lastReport = t;
-        fmt::print(stderr, "pvs: {}/{} directed portals searched, {:.0f} s\n", done, total, t);
-      };
-    }
+    ProgressBar bar("pvs (directed portals)", !s->quiet && stderrIsTerminal());
+    options.progress = bar.callback();
     const LeafPvsResult pvs = computeLeafPvs(prt, options);
+    bar.finish();
 
     std::FILE* out = std::fopen(s->output.c_str(), "w");
     if (!out) throw InputError(s->output, 0, "cannot write");
@@ -67,6 +63,32 @@ Action addPvsCommand(CLI::App& app) {
     if (std::fclose(out) != 0 || !ok) throw InputError(s->output, 0, "cannot write");
 
     const StabbingStats& st = pvs.stabbing;
+    if (s->json) {
+      const nlohmann::json j = {
+          {"portals_file", s->input},
+          {"output", s->output},
+          {"prt_version", prt.version},
+          {"leafs", pvs.leafCount},
+          {"clusters", pvs.clusterCount},
+          {"portals", pvs.portalCount},
+          {"mean_leafs_visible", pvs.meanLeafsVisible},
+          {"mean_clusters_might_see", pvs.meanClustersMightSee},
+          {"sequences_searched", pvs.sequencesSearched},
+          {"stabbing_tests", st.tests},
+          {"blocked_by_clipping", st.blockedByClipping},
+          {"blocked_by_lp", st.blockedByLp},
+          {"stabbed", st.stabbed},
+          {"unresolved", st.unresolved},
+          {"lp_numerical_failures", st.lpNumericalFailures},
+          {"degenerate_portals", st.degeneratePortals},
+          {"one_sided_pairs_dropped", pvs.oneSidedPairsDropped},
+          {"self_portals_skipped", prt.selfPortalsSkipped},
+          {"seconds", elapsed()},
+          {"flood_seconds", pvs.floodSeconds},
+          {"search_seconds", pvs.searchSeconds}};
+      fmt::print("{}\n", j.dump(2));
+      return 0;
+    }
     fmt::print("PRT{}: leafs {}  clusters {}  portals {}\n", prt.version, pvs.leafCount,
                pvs.clusterCount, pvs.portalCount);
     fmt::print("mean leafs visible {:.1f}  (might-see flood: {:.1f} clusters per cluster)\n",

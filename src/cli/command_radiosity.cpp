@@ -19,6 +19,7 @@
 #include "render/radiosity_pictures.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/progress_bar.h"
 #include "util/timing.h"
 #include "visibility/propagation.h"
 
@@ -32,7 +33,7 @@ Action addRadiosityCommand(CLI::App& app) {
   struct State {
     std::string scene, output, visibility = "rays";
     int rays = 16;
-    bool quiet = false;
+    bool quiet = false, json = false;
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
     bool noPictures = false, flat = false;
@@ -70,7 +71,9 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_option("--max-refinements", s->options.maxRefinements, "Refine/solve rounds at most")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--seed", s->options.seed, "Seed of the visibility samples");
-  cmd->add_flag("-q,--quiet", s->quiet, "No progress on stderr");
+  cmd->add_flag("-q,--quiet", s->quiet,
+                "No progress on stderr (there is none unless stderr is a terminal)");
+  cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   cmd->add_option("--camera", s->camera,
                   "Viewpoint of the pictures: ex,ey,ez,tx,ty,tz[,fov] (eye, target, vertical "
                   "field of view in degrees; default: a view into the scene, roof cut away)")
@@ -83,8 +86,19 @@ Action addRadiosityCommand(CLI::App& app) {
   return [s] {
     const Scene scene = loadScene(s->scene);
     const std::filesystem::path dir = makeOutputDirectory(s->output);
-    if (!s->quiet)
-      s->options.progress = [](const std::string& line) { std::cerr << line << std::endl; };
+    // Progress (a bar per refinement round, a line per round) only on a terminal.
+    const bool progress = !s->quiet && stderrIsTerminal();
+    std::unique_ptr<ProgressBar> bar;
+    if (progress) {
+      s->options.progress = [&bar](const std::string& line) {
+        if (bar) bar->finish();
+        std::cerr << line << std::endl;
+        bar = std::make_unique<ProgressBar>("radiosity refinement (links)");
+      };
+      s->options.refineProgress = [&bar](size_t done, size_t total) {
+        if (bar) bar->update(done, total);
+      };
+    }
 
     std::unique_ptr<EmbreeScene> bvh;
     std::unique_ptr<LinkVisibility> visibility;
@@ -92,9 +106,21 @@ Action addRadiosityCommand(CLI::App& app) {
     double visibilitySeconds = 0;
     if (s->visibility == "blockers") {
       const auto t0 = Clock::now();
-      graph = computeVisibility(scene, buildSubdivision(scene, s->bsp));
+      ProgressBar bspBar("BSP", progress);
+      if (progress) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
+      const Subdivision sub = buildSubdivision(scene, s->bsp);
+      bspBar.finish();
+      ProgressBar cellBar("visibility (per source cell)", progress);
+      ProgressBar visBar("visibility (per source patch)", progress);
+      PropagationOptions propagation;
+      propagation.cellProgress = cellBar.callback();
+      propagation.progress = visBar.callback();
+      ProgressBar blockerBar("blocker lists (per source patch)", progress);
+      propagation.blockerProgress = blockerBar.callback();
+      graph = computeVisibility(scene, sub, propagation);
+      visBar.finish();
       visibilitySeconds = secondsSince(t0);
-      if (!s->quiet)
+      if (progress)
         fmt::print(stderr, "visibility graph: {} VISIBLE + {} PARTIAL pairs, {:.2f} s\n",
                    graph.stats.pairsVisible, graph.stats.pairsPartial, visibilitySeconds);
       visibility = std::make_unique<BlockerVisibility>(scene, graph, s->rays);
@@ -105,6 +131,7 @@ Action addRadiosityCommand(CLI::App& app) {
       visibility = std::make_unique<RayVisibility>(scene, *bvh, s->rays);
     }
     const RadiosityResult result = solveRadiosity(scene, *visibility, s->options);
+    bar.reset();
 
     writeObj(scene, (dir / "patches.obj").string());
     writeRadiosityTxt(result, (dir / "radiosity.txt").string());
@@ -118,7 +145,13 @@ Action addRadiosityCommand(CLI::App& app) {
     if (!s->noPictures) {
       const PictureStats pictures = writeRadiosityPictures(
           scene, result, dir, parsePictureOptions(s->camera, s->imageSize, s->flat));
-      if (!s->quiet) std::cerr << fmt::format("pictures: {:.2f} s\n", pictures.seconds);
+      if (progress) std::cerr << fmt::format("pictures: {:.2f} s\n", pictures.seconds);
+    }
+    if (s->json) {
+      stats["scene"] = s->scene;
+      stats["output"] = dir.string();
+      fmt::print("{}\n", stats.dump(2));
+      return 0;
     }
 
     const RadiosityStats& st = result.stats;

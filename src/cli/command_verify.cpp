@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
 #include "scene/input_error.h"
@@ -20,12 +21,14 @@ Action addVerifyCommand(CLI::App& app) {
   struct State {
     std::string dir;
     VerifyOptions options;
+    bool json = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("dir", s->dir, "Output directory of `globalvis vis`")->required();
   cmd->add_option("--rays", s->options.rays, "Random rays from patches")->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
   cmd->add_option("--segments", s->options.segments, "Random segments between listed pairs")->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
   cmd->add_option("--seed", s->options.seed, "Random seed");
+  cmd->add_flag("--json", s->json, "Print the report as JSON on stdout");
   return [s] {
     const std::filesystem::path dir(s->dir);
     const std::string objPath = (dir / "patches.obj").string();
@@ -36,6 +39,21 @@ Action addVerifyCommand(CLI::App& app) {
                                    "all convex planar patches, so face k would not be patch k)");
     const VisibilityGraph graph = readVisibilityTxt((dir / "visibility.txt").string());
     const VerifyReport v = verifyVisibility(scene, graph, s->options);
+    if (s->json) {
+      const nlohmann::json j = {{"dir", s->dir},
+                                {"rays", v.rays},
+                                {"rays_hitting_front", v.raysHittingFront},
+                                {"missing_pairs", v.missingPairs},
+                                {"segments", v.segments},
+                                {"blocked_segments", v.blockedSegments},
+                                {"blocked_visible", v.blockedVisible},
+                                {"missing_blockers", v.missingBlockers},
+                                {"invalid_pairs", v.invalidPairs},
+                                {"examples", v.examples},
+                                {"ok", v.ok()}};
+      fmt::print("{}\n", j.dump(2));
+      return v.ok() ? 0 : 1;
+    }
     fmt::print("rays {} ({} met a patch's front first): pairs missing {}\n", v.rays,
                v.raysHittingFront, v.missingPairs);
     fmt::print("segments {} between listed pairs ({} blocked): blocked VISIBLE pairs {}, "

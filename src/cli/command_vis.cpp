@@ -1,7 +1,6 @@
 // `globalvis vis SCENE -o DIR`: cells, propagation and blocker lists (paper §3–§5); writes the
 // DESIGN.md contract: DIR/patches.obj (+.mtl), DIR/visibility.txt, DIR/stats.json.
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,9 +10,9 @@
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
 #include "cli/output_files.h"
-#include "cli/output_files.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/progress_bar.h"
 #include "visibility/propagation.h"
 
 namespace gv::cli {
@@ -42,15 +41,18 @@ Action addVisCommand(CLI::App& app) {
   return [s] {
     const Scene scene = loadScene(s->scene);
     for (const std::string& w : scene.report.warnings) fmt::print(stderr, "warning: {}\n", w);
-    const bool tty = isatty(STDERR_FILENO);
-    if (tty) fmt::print(stderr, "building cells...\r");
+    ProgressBar bspBar("BSP");
+    if (bspBar.enabled()) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
     const Subdivision sub = buildSubdivision(scene, s->bsp);
-    if (tty)
-      s->propagation.progress = [](size_t done, size_t total) {
-        fmt::print(stderr, "\rpropagating visibility: {}/{} patches   ", done, total);
-        if (done == total) fmt::print(stderr, "\n");
-      };
+    bspBar.finish();
+    ProgressBar cellBar("visibility (per source cell)");
+    ProgressBar visBar("visibility (per source patch)");
+    s->propagation.cellProgress = cellBar.callback();
+    s->propagation.progress = visBar.callback();
+    ProgressBar blockerBar("blocker lists (per source patch)");
+    s->propagation.blockerProgress = blockerBar.callback();
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
+    visBar.finish();
 
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     writeObj(scene, (dir / "patches.obj").string());

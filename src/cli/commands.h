@@ -21,6 +21,7 @@ Action addVerifyCommand(CLI::App& app);
 Action addPvsCommand(CLI::App& app);
 Action addViewCommand(CLI::App& app);
 Action addReportCommand(CLI::App& app);
+Action addBenchCommand(CLI::App& app);
 
 /// The bundled viewer script (`requested`, else the build's); throws InputError when missing.
 std::string readViewerBundle(const std::string& requested);

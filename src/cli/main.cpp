@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   add(gv::cli::addPvsCommand);
   add(gv::cli::addViewCommand);
   add(gv::cli::addReportCommand);
+  add(gv::cli::addBenchCommand);
   CLI::App* help = app.add_subcommand("help", "List the subcommands");
 
   try {

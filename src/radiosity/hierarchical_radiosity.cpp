@@ -258,8 +258,8 @@ class Solver {
   void refineLinks(RefinementStats& round) {
     std::vector<Link> pending = std::move(links_);
     links_.clear();
-    refinePending(pending, round);
-    while (pushInconsistentLinks(pending, round)) refinePending(pending, round);
+    refinePending(pending, round, true);
+    while (pushInconsistentLinks(pending, round)) refinePending(pending, round, false);
   }
 
   /// Splits `l` by its element `split` (which has children) and queues the children's links.
@@ -275,8 +275,19 @@ class Solver {
     }
   }
 
-  void refinePending(std::vector<Link>& pending, RefinementStats& round) {
+  /// `report`: progress goes to refineProgress (the round's main pass; the consistency passes
+  /// after it are not reported).
+  void refinePending(std::vector<Link>& pending, RefinementStats& round, bool report) {
+    // Children go on top of the stack, so the round's own links are its bottom `originals`.
+    const size_t total = pending.size();
+    size_t originals = total;
     while (!pending.empty()) {
+      if (pending.size() == originals) {
+        --originals;
+        const size_t done = total - originals;
+        if (report && options_.refineProgress && (done % 256 == 0 || done == total))
+          options_.refineProgress(done, total);
+      }
       const Link l = pending.back();
       pending.pop_back();
       const LinkError error = linkError(l);

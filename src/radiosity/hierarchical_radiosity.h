@@ -67,6 +67,9 @@ struct RadiosityOptions {
   FormFactorOptions formFactor;
   /// Called with one line of progress per round (for stderr); may be empty.
   std::function<void(const std::string&)> progress;
+  /// Called during each refinement round with (links of the round's start finished, their
+  /// count), at most every 256 links and at the end; may be empty.
+  std::function<void(size_t, size_t)> refineProgress;
 };
 
 /// Link counts by the paper's visibility classes.

@@ -100,8 +100,23 @@ struct PortalReach {
 /// Per-thread state of the patch-level search. Beyond the stabbing test it prunes a branch when
 /// every cell the branch might still reach (MightSee) holds only patches already seen in every
 /// way they can be seen: the search's only output is those flags, so nothing is lost.
+/// Throws PropagationDeadlineExceeded once `deadline` has passed; reads the clock every 64 calls
+/// (a search step costs far more than a clock read, but there are millions of them).
+class DeadlineCheck {
+ public:
+  Clock::time_point deadline = Clock::time_point::max();
+  void operator()() {
+    if (deadline == Clock::time_point::max() || ++calls_ % 64 != 0) return;
+    if (Clock::now() > deadline) throw PropagationDeadlineExceeded();
+  }
+
+ private:
+  uint32_t calls_ = 0;
+};
+
 class PatchSearch {
  public:
+  DeadlineCheck checkDeadline;
   PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
               const Placements& placements, const PortalReach& might,
               const std::vector<CellSet>& cellReach, const Tolerance& tol)
@@ -193,6 +208,7 @@ class PatchSearch {
 
   /// `reach`: the cells this branch may still reach (null: all).
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    checkDeadline();
     onPath_[cell] = 1;
     for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
     if (stack_.size() <= depth) stack_.resize(depth + 1);
@@ -246,6 +262,7 @@ struct CellSearchResult {
 /// reach is already known to be visible from the source.
 class CellSearch {
  public:
+  DeadlineCheck checkDeadline;
   CellSearch(const Subdivision& sub, const PortalReach& might, const Tolerance& tol)
       : sub_(sub), might_(might), stabber_(tol), onPath_(sub.cells.size(), 0) {}
 
@@ -265,6 +282,7 @@ class CellSearch {
 
  private:
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    checkDeadline();
     onPath_[cell] = 1;
     if (stack_.size() <= depth) stack_.resize(depth + 1);
     for (uint32_t pid : sub_.cells[cell].portals) {
@@ -381,6 +399,12 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                                static_cast<int>(p.front), 0});
     LeafPvsOptions pvsOptions;
     pvsOptions.parallel = threads > 1;
+    // Between waves of the search: progress, and the deadline (a wave is short).
+    pvsOptions.progress = [&](size_t done, size_t total) {
+      if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
+        throw PropagationDeadlineExceeded();
+      if (options.cellProgress) options.cellProgress(done, total);
+    };
     tbb::task_arena arena(threads);
     LeafPvsResult pvs;
     arena.execute([&] { pvs = computeLeafPvs(graph, pvsOptions); });
@@ -406,9 +430,26 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     flood.emplace(sub, tol);
     reach.might = &*flood;
     std::vector<CellSearchResult> cellResults(sub.cells.size());
+    std::atomic<size_t> cellsDone{0};
+    std::mutex cellProgressMutex;
+    size_t cellsReported = 0;
     parallelFor(
-        sub.cells.size(), threads, [&] { return CellSearch(sub, reach, tol); },
-        [&](CellSearch& w, size_t c) { cellResults[c] = w.run(static_cast<uint32_t>(c)); });
+        sub.cells.size(), threads,
+        [&] {
+          CellSearch w(sub, reach, tol);
+          w.checkDeadline.deadline = options.deadline;
+          return w;
+        },
+        [&](CellSearch& w, size_t c) {
+          cellResults[c] = w.run(static_cast<uint32_t>(c));
+          const size_t d = ++cellsDone;
+          if (options.cellProgress && (d % 16 == 0 || d == sub.cells.size())) {
+            // Under the lock, the count now (not d): reports rise even when threads race.
+            std::lock_guard lock(cellProgressMutex);
+            const size_t now = cellsDone.load();
+            if (now > cellsReported) options.cellProgress(cellsReported = now, sub.cells.size());
+          }
+        });
     uint64_t lengthSum = 0;
     for (const CellSearchResult& r : cellResults) {
       st.cellPairsVisible += r.reached;
@@ -459,7 +500,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
-      n, threads, [&] { return PatchSearch(sub, cellPatches, placements, reach, cellReach, tol); },
+      n, threads, [&] {
+        PatchSearch w(sub, cellPatches, placements, reach, cellReach, tol);
+        w.checkDeadline.deadline = options.deadline;
+        return w;
+      },
       [&](PatchSearch& w, size_t s) {
         seen[s] = w.run(static_cast<uint32_t>(s));
         const size_t d = ++done;
@@ -489,9 +534,21 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::vector<Aabb> patchBoxes(n);
   for (size_t p = 0; p < n; ++p) patchBoxes[p] = scene.patches[p].polygon.bounds();
   std::vector<std::vector<Interaction>> perSource(n);
+  std::atomic<size_t> sourcesDone{0};
+  std::mutex blockerProgressMutex;
+  size_t sourcesReported = 0;
   parallelFor(
       n, threads, [] { return 0; },
       [&](int&, size_t si) {
+        if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
+          throw PropagationDeadlineExceeded();
+        if (options.blockerProgress) {
+          const size_t d = sourcesDone.load();
+          if (d % 64 == 0) {
+            std::lock_guard lock(blockerProgressMutex);
+            if (d > sourcesReported) options.blockerProgress(sourcesReported = d, n);
+          }
+        }
         const auto s = static_cast<uint32_t>(si);
         const ConvexPolygon& sp = scene.patches[s].polygon;
         for (const auto& [t, f] : seen[s].seen) {
@@ -523,7 +580,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           }
           perSource[s].push_back(std::move(in));
         }
+        ++sourcesDone;
       });
+  if (options.blockerProgress) options.blockerProgress(n, n);
   for (auto& v : perSource)
     for (Interaction& in : v) graph.interactions.push_back(std::move(in));
   uint64_t blockerSum = 0;

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <functional>
+#include <stdexcept>
 
 #include "bsp/subdivision.h"
 #include "scene/scene.h"
+#include "util/timing.h"
 #include "visibility/visibility_graph.h"
 
 namespace gv {
@@ -19,6 +21,21 @@ struct PropagationOptions {
   size_t shaftSamples = 2000;
   /// Called with (done, total) source patches now and then, from one thread at a time.
   std::function<void(size_t, size_t)> progress;
+  /// Called with (done, total) of the cell-to-cell search (§4.1, before the patch searches) now
+  /// and then, from one thread at a time: source cells, or directed portals when the leaf-PVS
+  /// search runs it; ends with done == total.
+  std::function<void(size_t, size_t)> cellProgress;
+  /// Called with (done, total) source patches of the blocker-list phase (§5, after the patch
+  /// searches) now and then, from one thread at a time, rising.
+  std::function<void(size_t, size_t)> blockerProgress;
+  /// The searches give up (computeVisibility throws PropagationDeadlineExceeded) once the clock
+  /// passes this: a time budget that also holds inside one long search (`globalvis bench`).
+  Clock::time_point deadline = Clock::time_point::max();
+};
+
+/// Thrown by computeVisibility when PropagationOptions::deadline has passed.
+struct PropagationDeadlineExceeded : std::runtime_error {
+  PropagationDeadlineExceeded() : std::runtime_error("visibility propagation: deadline passed") {}
 };
 
 /// The conservative visibility graph of `scene` over its subdivision:

@@ -11,13 +11,12 @@ namespace gv::test {
 
 struct CliResult {
   int exitCode = -1;
-  std::string output;  ///< stdout and stderr together
+  std::string output;  ///< what it printed (runCli: stdout and stderr together)
 };
 
-/// Runs `globalvis ARGS` through the shell; ARGS is pasted verbatim (quote paths yourself).
-inline CliResult runCli(const std::string& args) {
+/// Runs a shell command line, capturing its stdout.
+inline CliResult runShell(const std::string& command) {
   CliResult r;
-  const std::string command = std::string("'") + GV_CLI_PATH + "' " + args + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf{};
@@ -26,6 +25,16 @@ inline CliResult runCli(const std::string& args) {
   const int status = pclose(pipe);
   r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// Runs `globalvis ARGS` through the shell; ARGS is pasted verbatim (quote paths yourself).
+inline CliResult runCli(const std::string& args) {
+  return runShell(std::string("'") + GV_CLI_PATH + "' " + args + " 2>&1");
+}
+
+/// As runCli, but `output` is stdout alone (stderr discarded): for output parsed by a script.
+inline CliResult runCliStdout(const std::string& args) {
+  return runShell(std::string("'") + GV_CLI_PATH + "' " + args + " 2>/dev/null");
 }
 
 }  // namespace gv::test

@@ -1,0 +1,302 @@
+// `globalvis bench`, one scene: timed stages, their checks and result hashes.
+#include "cli/bench_run.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "bsp/subdivision.h"
+#include "quake/leaf_pvs.h"
+#include "quake/prt_file.h"
+#include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/ray_visibility.h"
+#include "raycast/embree_scene.h"
+#include "util/fnv_hash.h"
+#include "util/progress_bar.h"
+#include "util/timing.h"
+#include "visibility/propagation.h"
+#include "visibility/verify.h"
+
+namespace gv::cli {
+namespace {
+
+/// Rays per link of the bench's radiosity (the `radiosity` command's default).
+constexpr int kBenchRadiosityRays = 16;
+
+/// Thrown from a progress callback to abandon a stage over the scene's budget.
+struct BudgetExceeded {};
+
+class Budget {
+ public:
+  explicit Budget(double maxSeconds) : maxSeconds_(maxSeconds) {}
+  bool spent() const { return secondsSince(start_) > maxSeconds_; }
+  double maxSeconds() const { return maxSeconds_; }
+  Clock::time_point deadline() const {
+    return start_ +
+           std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(maxSeconds_));
+  }
+
+ private:
+  Clock::time_point start_ = Clock::now();
+  double maxSeconds_;
+};
+
+/// Progress callback of a stage: the bar (on a terminal) and the budget.
+std::function<void(size_t, size_t)> watch(ProgressBar& bar, const Budget& budget) {
+  return [&bar, &budget](size_t done, size_t total) {
+    bar.update(done, total);
+    if (budget.spent()) throw BudgetExceeded{};
+  };
+}
+
+/// The cells fill the root box, every patch lies in some cell, portals link two real cells.
+std::optional<std::string> checkSubdivision(const Subdivision& sub, size_t patches) {
+  double volume = 0;
+  for (const Cell& c : sub.cells) volume += c.shape.volume();
+  const double root = sub.tree.root.volume();
+  if (!(std::abs(volume - root) <= kBenchVolumeTolerance * root))
+    return fmt::format("cell volumes sum to {:.9g}, root box {:.9g}", volume, root);
+  std::vector<char> placed(patches, 0);
+  for (const Cell& c : sub.cells)
+    for (uint32_t p : c.patches)
+      if (p < patches) placed[p] = 1;
+  const size_t unplaced = static_cast<size_t>(std::count(placed.begin(), placed.end(), 0));
+  if (unplaced) return fmt::format("{} patches in no cell", unplaced);
+  for (const Portal& p : sub.portals)
+    if (p.back == p.front || p.back >= sub.cells.size() || p.front >= sub.cells.size())
+      return fmt::format("portal linking cells {} and {}", p.back, p.front);
+  return std::nullopt;
+}
+
+/// Pairs sorted with s < r, ids valid, blocker lists sorted without s or r.
+std::optional<std::string> checkGraphShape(const VisibilityGraph& g, size_t patches) {
+  for (size_t i = 0; i < g.interactions.size(); ++i) {
+    const Interaction& in = g.interactions[i];
+    if (in.s >= in.r || in.r >= patches) return fmt::format("pair ({}, {})", in.s, in.r);
+    if (i > 0) {
+      const Interaction& prev = g.interactions[i - 1];
+      if (std::pair(prev.s, prev.r) >= std::pair(in.s, in.r))
+        return fmt::format("pairs not sorted at ({}, {})", in.s, in.r);
+    }
+    if (!std::is_sorted(in.blockers.begin(), in.blockers.end()) ||
+        std::binary_search(in.blockers.begin(), in.blockers.end(), in.s) ||
+        std::binary_search(in.blockers.begin(), in.blockers.end(), in.r))
+      return fmt::format("blocker list of ({}, {})", in.s, in.r);
+  }
+  return std::nullopt;
+}
+
+std::string visibilityHash(const VisibilityGraph& g) {
+  Fnv1a h;
+  for (const Interaction& in : g.interactions) {
+    h.integer(in.s);
+    h.integer(in.r);
+    h.integer(in.blockers.size());
+    for (uint32_t b : in.blockers) h.integer(b);
+  }
+  return h.hex();
+}
+
+/// Radiosity is a sum of floating-point terms: hashed at 6 significant digits, so the hash
+/// shows a changed answer, not a changed summation order.
+std::string radiosityHash(const RadiosityResult& r) {
+  Fnv1a h;
+  for (const Rgb& c : r.patchRadiosity) h.text(fmt::format("{:.5e} {:.5e} {:.5e};", c.r, c.g, c.b));
+  return h.hex();
+}
+
+std::optional<std::string> checkRadiosity(const Scene& scene, const RadiosityResult& r) {
+  if (r.patchRadiosity.size() != scene.patches.size()) return "radiosity per patch missing";
+  for (size_t k = 0; k < scene.patches.size(); ++k) {
+    const Rgb& b = r.patchRadiosity[k];
+    const Rgb& e = scene.materials.at(scene.patches[k].material).emission;
+    for (auto [value, emitted] : {std::pair{b.r, e.r}, {b.g, e.g}, {b.b, e.b}})
+      if (!std::isfinite(value) || value < emitted * (1 - 1e-9))
+        return fmt::format("patch {} radiosity {} below its emission {}", k, value, emitted);
+  }
+  return std::nullopt;
+}
+
+void record(BenchRow& row, const std::string& check, const std::optional<std::string>& error) {
+  if (error)
+    row.failures.push_back(check + ": " + *error);
+  else
+    row.checks.push_back(check);
+}
+
+std::string overBudget(const std::string& stage, const Budget& b) {
+  return fmt::format("{} stopped: over the {:g} s budget", stage, b.maxSeconds());
+}
+
+std::string skipped(const std::string& stages, const Budget& b) {
+  return fmt::format("{} skipped: {:g} s budget spent", stages, b.maxSeconds());
+}
+
+}  // namespace
+
+BenchRow benchScene(const std::string& name, const std::string& kind, const SceneMaker& make,
+                    const BenchOptions& options) {
+  BenchRow row;
+  row.name = name;
+  row.kind = kind;
+  const Budget budget(options.maxSeconds);
+
+  auto t0 = Clock::now();
+  Scene scene;
+  try {
+    scene = make();
+  } catch (const std::exception& e) {  // bad input: this row fails, the others still run
+    row.failures.push_back(fmt::format("load: {}", e.what()));
+    return row;
+  }
+  row.loadSeconds = secondsSince(t0);
+  row.patches = scene.patches.size();
+  if (budget.spent()) {
+    row.notes.push_back(skipped("cells, vis", budget));
+    return row;
+  }
+
+  Subdivision sub;
+  try {
+    ProgressBar bar(name + ": BSP");
+    BspOptions bsp;
+    bsp.minCoverage = options.minCoverage;
+    bsp.progress = [&](double f) {
+      bar.update(f);
+      if (budget.spent()) throw BudgetExceeded{};
+    };
+    sub = buildSubdivision(scene, bsp);
+  } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("BSP", budget));
+    return row;
+  }
+  record(row, "cells", checkSubdivision(sub, scene.patches.size()));
+  row.bspSeconds = sub.stats.bspSeconds;
+  row.portalSeconds = sub.stats.portalSeconds;
+  row.cells = sub.stats.cells;
+  row.portals = sub.stats.portals;
+  if (budget.spent()) {
+    row.notes.push_back(skipped("vis", budget));
+    return row;
+  }
+
+  VisibilityGraph graph;
+  try {
+    ProgressBar cellBar(name + ": visibility, cells");
+    ProgressBar bar(name + ": visibility, patches");
+    ProgressBar blockerBar(name + ": visibility, blockers");
+    PropagationOptions propagation;
+    propagation.threads = options.threads;
+    propagation.cellProgress = watch(cellBar, budget);
+    propagation.progress = watch(bar, budget);
+    propagation.blockerProgress = watch(blockerBar, budget);
+    propagation.deadline = budget.deadline();
+    graph = computeVisibility(scene, sub, propagation);
+  } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("vis", budget));
+    return row;
+  } catch (const PropagationDeadlineExceeded&) {
+    row.notes.push_back(overBudget("vis", budget));
+    return row;
+  }
+  record(row, "pairs", checkGraphShape(graph, scene.patches.size()));
+  {
+    VerifyOptions verify;
+    verify.rays = kBenchVerifyRays;
+    verify.segments = kBenchVerifySegments;
+    const VerifyReport v = verifyVisibility(scene, graph, verify);
+    std::optional<std::string> error;
+    if (!v.ok())
+      error = fmt::format("{} missing pairs, {} blocked VISIBLE, {} missing blockers{}",
+                          v.missingPairs, v.blockedVisible, v.missingBlockers,
+                          v.examples.empty() ? "" : " (" + v.examples.front() + ")");
+    record(row, fmt::format("verify {} rays", v.rays), error);
+  }
+  const VisibilityStats& vs = graph.stats;
+  row.visSeconds = vs.seconds;
+  row.pairsVisible = vs.pairsVisible;
+  row.pairsPartial = vs.pairsPartial;
+  row.pairsListed = vs.pairsVisible + vs.pairsPartial;
+  row.meanBlockers = vs.meanBlockersPerPartial;
+  row.visHash = visibilityHash(graph);
+
+  if (!options.radiosity) return row;
+  if (scene.patches.size() > options.radiosityMaxPatches) {
+    row.notes.push_back(
+        fmt::format("radiosity skipped: over {} patches", options.radiosityMaxPatches));
+    return row;
+  }
+  if (budget.spent()) {
+    row.notes.push_back(skipped("radiosity", budget));
+    return row;
+  }
+  try {
+    ProgressBar bar(name + ": radiosity refinement");
+    const EmbreeScene bvh(scene);
+    RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
+    RadiosityOptions ro;
+    ro.refineProgress = watch(bar, budget);
+    t0 = Clock::now();
+    const RadiosityResult result = solveRadiosity(scene, visibility, ro);
+    row.radiositySeconds = secondsSince(t0);
+    record(row, "radiosity", checkRadiosity(scene, result));
+    row.radiosityLinks = result.stats.rounds.empty() ? 0 : result.stats.rounds.back().links.total();
+    row.radiosityHash = radiosityHash(result);
+  } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("radiosity", budget));
+  }
+  return row;
+}
+
+void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow& row) {
+  const Budget budget(options.maxSeconds);
+  const auto t0 = Clock::now();
+  PrtFile prt;
+  try {
+    prt = readPrtFile(prtPath);
+  } catch (const std::exception& e) {
+    row.failures.push_back(fmt::format("PVS: {}", e.what()));
+    return;
+  }
+  LeafPvsResult pvs;
+  try {
+    ProgressBar bar(row.name + ": PVS");
+    LeafPvsOptions lo;
+    lo.parallel = options.threads != 1;
+    lo.progress = watch(bar, budget);
+    pvs = computeLeafPvs(prt, lo);
+  } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("PVS", budget));
+    return;
+  }
+  row.pvsSeconds = secondsSince(t0);
+  // Each row sorted and holding its own leaf; the relation symmetric (computeLeafPvs promises
+  // both; a broken symmetrisation or expansion would show here).
+  std::optional<std::string> error;
+  const auto& rows = pvs.visibleLeafs;
+  for (size_t l = 0; l < rows.size() && !error; ++l) {
+    if (!std::is_sorted(rows[l].begin(), rows[l].end()) ||
+        !std::binary_search(rows[l].begin(), rows[l].end(), static_cast<uint32_t>(l)))
+      error = fmt::format("leaf {}'s row is unsorted or lacks itself", l);
+    for (uint32_t v : rows[l]) {
+      if (v >= rows.size() ||
+          !std::binary_search(rows[v].begin(), rows[v].end(), static_cast<uint32_t>(l))) {
+        error = fmt::format("leaf {} sees {} but not back", l, v);
+        break;
+      }
+    }
+  }
+  record(row, "pvs", error);
+  Fnv1a h;
+  for (const auto& r : rows) {
+    h.integer(r.size());
+    for (uint32_t v : r) h.integer(v);
+  }
+  row.pvsHash = h.hex();
+  row.pvsLeafs = pvs.leafCount;
+  row.pvsMeanLeafs = pvs.meanLeafsVisible;
+}
+
+}  // namespace gv::cli

@@ -1,0 +1,65 @@
+// `globalvis bench`, one scene: the pipeline's stages timed under a budget, each stage's result
+// checked before its time counts, and a hash of each result (STYLE.md: benchmarks check first).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bsp/bsp_tree.h"
+#include "scene/scene.h"
+
+namespace gv::cli {
+
+/// Rays and segments of the verifyVisibility check of each vis result: a few thousand, so the
+/// check costs less than the stage it checks.
+inline constexpr uint64_t kBenchVerifyRays = 4000;
+inline constexpr uint64_t kBenchVerifySegments = 2000;
+
+/// Cells must fill the root box: |sum of cell volumes − root volume| ≤ this × root volume. The
+/// cells are clipped polyhedra, exact up to rounding (~1e-12 relative); 1e-6 leaves room for
+/// millions of cells and still catches one lost cell.
+inline constexpr double kBenchVolumeTolerance = 1e-6;
+
+/// What to run on each scene.
+struct BenchOptions {
+  double maxSeconds = 60;             ///< per scene; later stages are skipped once exceeded
+  bool radiosity = false;             ///< also solve radiosity (rays mode, 16 rays per link)
+  size_t radiosityMaxPatches = 3000;  ///< larger scenes skip radiosity (its initial links are n²)
+  double minCoverage = kVisibilityMinCoverage;  ///< BSP stop rule (`vis`'s default)
+  int threads = 0;                              ///< propagation and PVS threads (0 = all cores)
+};
+
+/// One scene's figures. Empty optionals: the stage did not run (see `notes`).
+struct BenchRow {
+  std::string name, kind;  ///< kind: "office" or "map"
+  size_t patches = 0;
+  std::optional<double> loadSeconds, bspSeconds, portalSeconds, visSeconds, radiositySeconds,
+      pvsSeconds;
+  std::optional<size_t> cells, portals;
+  std::optional<uint64_t> pairsListed, pairsVisible, pairsPartial;
+  std::optional<double> meanBlockers;
+  std::optional<size_t> radiosityLinks;
+  std::optional<size_t> pvsLeafs;
+  std::optional<double> pvsMeanLeafs;
+  std::string visHash, radiosityHash, pvsHash;  ///< FNV-1a, 16 hex digits; empty if not run
+  std::vector<std::string> checks;              ///< checks passed
+  std::vector<std::string> failures;            ///< checks failed (bench exits non-zero)
+  std::vector<std::string> notes;               ///< stages skipped and why
+};
+
+/// Makes a scene (generator or importer); timed as the row's load stage.
+using SceneMaker = std::function<Scene()>;
+
+/// Runs load, BSP + portals, visibility (and radiosity) on one scene. A stage that reports
+/// progress is abandoned at its next report once `options.maxSeconds` have passed since the
+/// scene started; stages after the budget is spent are skipped. Both are noted in the row.
+BenchRow benchScene(const std::string& name, const std::string& kind, const SceneMaker& make,
+                    const BenchOptions& options);
+
+/// Adds the leaf PVS of the portal file `prtPath` to `row` (its own budget of maxSeconds).
+void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow& row);
+
+}  // namespace gv::cli
