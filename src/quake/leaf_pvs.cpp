@@ -230,7 +230,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   for (size_t c = 0; c < cells; ++c) updateReach(c);
   tbb::enumerable_thread_specific<Searcher> searchers(
       [&] { return Searcher(g, might, reach, cells, options.stabbing); });
-  const size_t wave = 32;
+  const size_t wave = 8;
   for (size_t w0 = 0; w0 < np; w0 += wave) {
     const size_t w1 = std::min(np, w0 + wave);
     auto searchRange = [&](size_t begin, size_t end) {

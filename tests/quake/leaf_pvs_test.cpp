@@ -224,5 +224,21 @@ TEST(LeafPvsRealMap, LightGeneralClippingOnlyContainsEveryRayPair) {
   EXPECT_LE(pvs.meanLeafsVisible, 351.0);
 }
 
+TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnesses) {
+  const PrtFile prt = sharedMap("light_general");
+  if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
+  // The default (LP, reverse might-see pruning, no witness search) against the ray walker.
+  const LeafPvsResult pvs = computeLeafPvs(prt);
+  expectSymmetricWithSelf(pvs);
+  EXPECT_GT(checkAgainstRays(prt, pvs, 40000, 3), 500u);
+  X EXPECT_EQ(pvs.stabbing.stabbed, 0u);  // no witness search by default
+  // Witness lines only tell Stabbed from Unresolved: the pruning, hence the PVS, is the same.
+  LeafPvsOptions withWitness;
+  withWitness.stabbing.seekWitness = true;
+  const LeafPvsResult w = computeLeafPvs(prt, withWitness);
+  EXPECT_GT(w.stabbing.stabbed, 0u);
+  EXPECT_EQ(w.visibleLeafs, pvs.visibleLeafs);
+}
+
 }  // namespace
 }  // namespace gv
