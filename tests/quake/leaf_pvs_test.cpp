@@ -231,7 +231,10 @@ TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnes
   const LeafPvsResult pvs = computeLeafPvs(prt);
   expectSymmetricWithSelf(pvs);
   EXPECT_GT(checkAgainstRays(prt, pvs, 40000, 3), 500u);
-  X EXPECT_EQ(pvs.stabbing.stabbed, 0u);  // no witness search by default
+  // vis's full mean is 347 (README); ours is 348.0 (1 leaf more per leaf: LP-feasible sequences
+  // that no exact test refutes are kept).
+  EXPECT_LE(pvs.meanLeafsVisible, 347 + 1.5);
+  EXPECT_EQ(pvs.stabbing.stabbed, 0u);  // no witness search by default
   // Witness lines only tell Stabbed from Unresolved: the pruning, hence the PVS, is the same.
   LeafPvsOptions withWitness;
   withWitness.stabbing.seekWitness = true;
