@@ -243,5 +243,16 @@ TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnes
   EXPECT_EQ(w.visibleLeafs, pvs.visibleLeafs);
 }
 
+// E1M1 (1167 clusters) takes ~20 CPU seconds: disabled by default, run with
+// --gtest_also_run_disabled_tests --gtest_filter='*E1M1*'.
+TEST(LeafPvsRealMap, DISABLED_E1M1ContainsEveryRayPair) {
+  const PrtFile prt = sharedMap("E1M1-edited-ents");
+  if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
+  const LeafPvsResult pvs = computeLeafPvs(prt);
+  expectSymmetricWithSelf(pvs);
+  EXPECT_GT(checkAgainstRays(prt, pvs, 300000, 4), 20000u);
+  RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
+}
+
 }  // namespace
 }  // namespace gv
