@@ -120,7 +120,7 @@ struct Searcher {
   CellSet visible;
   std::vector<char> onPath;
   std::vector<CellSet> frames;  // might-see set per depth
-  int source = 0;               // the cell the current search starts from
+  std::vector<int> path;        // the cells before the current one, source first
   uint64_t sequences = 0;
 
   CellSet& frame(size_t depth) {
@@ -143,9 +143,15 @@ struct Searcher {
     start = *might[pi];
     for (size_t y = 0; y < reach.size(); ++y)
       if (start.contains(y) && !reach[y].contains(static_cast<size_t>(p.from))) start.erase(y);
-    source = p.from;
+    path.assign(1, p.from);
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
+  }
+
+  bool reachesAll(const CellSet& set) const {
+    for (int c : path)
+      if (!set.contains(static_cast<size_t>(c))) return false;
+    return true;
   }
 
   void recurse(int cell, size_t depth) {
@@ -154,16 +160,18 @@ struct Searcher {
       if (onPath[r.to]) continue;  // a line meets a convex cell in one segment
       frame(depth + 1);            // allocate first: references into `frames` are taken below
       if (!frames[depth].contains(r.to)) continue;
-      // The reversed line leaves r.to through r's reverse portal (index ri ^ 1) and reaches the
-      // source cell.
-      if (!might[ri ^ 1]->contains(static_cast<size_t>(source))) continue;
+      // The reversed line leaves r.to through r's reverse portal (index ri ^ 1) and passes
+      // through every earlier cell of the path.
+      if (!reachesAll(*might[ri ^ 1])) continue;
       // Nothing this branch might reach is unseen: it cannot change the answer.
       if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], *might[ri], visible)) continue;
       ++sequences;
       if (stabber.push(r.winding) == StabbingResult::Blocked) continue;
       visible.insert(r.to);
       onPath[r.to] = 1;
+      path.push_back(cell);
       recurse(r.to, depth + 1);
+      path.pop_back();
       onPath[r.to] = 0;
       stabber.pop();
     }

@@ -52,9 +52,9 @@ struct LeafPvsResult {
 ///     when the stabbing test proves a sequence blocked, when the entered cell is already on the
 ///     path (a line meets a convex cell once), or when nothing the sequence might still reach is
 ///     unseen (might-see sets narrowed by the results of portals searched in earlier waves),
-///     or when the entered cell cannot see the source cell back (sightlines are symmetric: the
-///     reverse portal's might-see set, or every might-see set of the entered cell's portals,
-///     excludes the source);
+///     or when the entered cell cannot see the path back (sightlines are symmetric: the reverse
+///     portal's might-see set misses a cell of the path, or every might-see set of the entered
+///     cell's portals misses the source);
 ///     a cell sees itself and what its portals see;
 ///  3. symmetrisation: a pair is kept only if found from both sides (each side's search is
 ///     conservative and true visibility is symmetric, so the intersection still contains it);
