@@ -179,6 +179,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     firstDegenerate_ = degenerate;
     if (!degenerate) {
       normal_ = normalize(newellNormal(portal));
+      firstMinOffset_ = minDot(normal_, portal);
       pivot_ = dominantAxis(normal_);
     } else {
       level.lpValid = false;  // no crossing direction to normalise by: nothing is provable
@@ -210,11 +211,9 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   level.lpValid = level.lpValid && prev.lpValid;
   level.source.assign(prev.source.begin(), prev.source.end());
   if (options_.clipBySeparatingPlanes) {
-    const Level& first = levels_[0];
     // The line crosses the first portal's plane once, forward: everything later is in front.
     if (!firstDegenerate_) {
-      const Vec3 n = normalize(newellNormal(first.original));
-      clipToHalfspace(level.clipped, n, minDot(n, first.original), tol_.length(), scratch_);
+      clipToHalfspace(level.clipped, normal_, firstMinOffset_, tol_.length(), scratch_);
       level.clipped.swap(scratch_);
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.

@@ -159,6 +159,7 @@ class PortalSequenceStabber {
   Vec3 normal_;
   int pivot_ = 0;
   bool firstDegenerate_ = false;
+  double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;
