@@ -65,6 +65,8 @@ int orient3d(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 }
 
 int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
+  // Three points on one axis-parallel line (common in axis-aligned levels) are collinear.
+  if ((ax == bx && ax == cx) || (ay == by && ay == cy)) return 0;
   if (smallInteger(ax) && smallInteger(ay) && smallInteger(bx) && smallInteger(by) &&
       smallInteger(cx) && smallInteger(cy)) {
     // Exact: differences need 17 bits, the products 34.

@@ -183,5 +183,30 @@ TEST(PredicatesSmallIntegers, Orient3dAndOrient2dMatchExactRationals) {
   EXPECT_GT(zeros2, 2000);
 }
 
+// The axis-parallel-line shortcut of orient2d: shared x (or y) coordinates, non-integer values,
+// some triples collinear, some not, against exact rationals.
+TEST(PredicatesOrient2d, AxisParallelTriplesMatchExactRationals) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-100, 100);
+  int zeros = 0, nonZeros = 0;
+  auto ra = [](double x) { return Rational(x); };
+  for (int trial = 0; trial < 20000; ++trial) {
+    double p[6];
+    for (double& x : p) x = u(rng);
+    // Copy coordinates of the same axis between the points.
+    for (int k = 0; k < 3; ++k) {
+      const int axis = static_cast<int>(rng() % 2);
+      p[2 * (rng() % 3) + axis] = p[2 * (rng() % 3) + axis];
+    }
+    const Rational det = (ra(p[2]) - ra(p[0])) * (ra(p[5]) - ra(p[1])) -
+                         (ra(p[3]) - ra(p[1])) * (ra(p[4]) - ra(p[0]));
+    const int exact = CGAL::sign(det);
+    ASSERT_EQ(orient2d(p[0], p[1], p[2], p[3], p[4], p[5]), exact) << trial;
+    (exact == 0 ? zeros : nonZeros)++;
+  }
+  EXPECT_GT(zeros, 1000);
+  EXPECT_GT(nonZeros, 1000);
+}
+
 }  // namespace
 }  // namespace gv
