@@ -14,16 +14,19 @@
 #include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
 #include "scene/input_error.h"
+#include "util/timing.h"
 
 namespace gv::cli {
 
 Action addPvsCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "pvs", "Leaf-to-leaf potentially visible set of a Quake portal file (.prt, PRT1 or PRT2); "
-             "writes one line per leaf: L n v1 ... vn");
+      "pvs",
+      "Leaf-to-leaf potentially visible set of a Quake portal file (.prt, PRT1 or PRT2); "
+      "writes one line per leaf: L n v1 ... vn");
   struct State {
     std::string input, output;
-    bool serial = false, quiet = false, noLp = false, backClip = false, json = false;
+    bool serial = false, quiet = false, noLp = false, backClip = false, json = false,
+         witness = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
@@ -36,6 +39,8 @@ Action addPvsCommand(CLI::App& app) {
   cmd->add_flag("--back-clip", s->backClip,
                 "Also clip the first portal by the separating planes of the last two (vis's back "
                 "clip): prunes more sequences, costs more per sequence");
+  cmd->add_flag("--witness", s->witness,
+                "Also look for exact witness lines (counts 'stabbed' sequences; same PVS, slower)");
   return [s] {
     const auto t0 = Clock::now();
     auto elapsed = [&] { return secondsSince(t0); };
@@ -44,6 +49,7 @@ Action addPvsCommand(CLI::App& app) {
     options.parallel = !s->serial;
     options.stabbing.useLinearProgram = !s->noLp;
     options.stabbing.backClip = s->backClip;
+    options.stabbing.seekWitness = s->witness;
     ProgressBar bar("pvs (directed portals)", !s->quiet && stderrIsTerminal());
     options.progress = bar.callback();
     const LeafPvsResult pvs = computeLeafPvs(prt, options);
@@ -93,16 +99,18 @@ Action addPvsCommand(CLI::App& app) {
                pvs.clusterCount, pvs.portalCount);
     fmt::print("mean leafs visible {:.1f}  (might-see flood: {:.1f} clusters per cluster)\n",
                pvs.meanLeafsVisible, pvs.meanClustersMightSee);
-    fmt::print("sequences {}  stabbing tests {}: blocked by clipping {}, by LP {}; "
-               "stabbed {}, unresolved (kept) {}\n",
-               pvs.sequencesSearched, st.tests, st.blockedByClipping, st.blockedByLp, st.stabbed,
-               st.unresolved);
+    fmt::print(
+        "sequences {}  stabbing tests {}: blocked by clipping {}, by LP {}; "
+        "stabbed {}, unresolved (kept) {}\n",
+        pvs.sequencesSearched, st.tests, st.blockedByClipping, st.blockedByLp, st.stabbed,
+        st.unresolved);
     if (st.lpNumericalFailures || st.degeneratePortals || pvs.oneSidedPairsDropped ||
         prt.selfPortalsSkipped)
-      fmt::print("LP breakdowns {}  degenerate portals {}  one-sided pairs dropped {}  "
-                 "self portals skipped {}\n",
-                 st.lpNumericalFailures, st.degeneratePortals, pvs.oneSidedPairsDropped,
-                 prt.selfPortalsSkipped);
+      fmt::print(
+          "LP breakdowns {}  degenerate portals {}  one-sided pairs dropped {}  "
+          "self portals skipped {}\n",
+          st.lpNumericalFailures, st.degeneratePortals, pvs.oneSidedPairsDropped,
+          prt.selfPortalsSkipped);
     fmt::print("seconds {:.2f} (flood {:.2f}, search {:.2f}); wrote {}\n", elapsed(),
                pvs.floodSeconds, pvs.searchSeconds, s->output);
     return 0;

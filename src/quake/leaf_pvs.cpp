@@ -1,7 +1,6 @@
 // Leaf PVS of a Quake portal file by depth-first search over portal sequences with the stabbing
 // test (paper §4, §4.1). See leaf_pvs.h for the method and its guarantees.
 #include "quake/leaf_pvs.h"
-#include "util/timing.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -13,12 +12,12 @@
 #include <mutex>
 
 #include "geometry/tolerance.h"
+#include "util/timing.h"
 #include "visibility/cell_set.h"
 #include "visibility/portal_clipping.h"
 
 namespace gv {
 namespace {
-
 
 // A portal crossed in one direction: 2i is portal i from clusterA to clusterB (file winding), 2i+1
 // the way back (reversed winding), so that the winding is always counter-clockwise seen from the
@@ -26,7 +25,7 @@ namespace {
 struct DirectedPortal {
   Winding winding;
   int from = 0, to = 0;
-  Vec3 normal;                      // unit, direction of travel (zero if degenerate)
+  Vec3 normal;                          // unit, direction of travel (zero if degenerate)
   double minOffset = 0, maxOffset = 0;  // the slab of normal·x its vertices span
 };
 
@@ -101,9 +100,13 @@ void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
 
 // One thread's search state.
 struct Searcher {
-  Searcher(const Graph& graph, const std::vector<const CellSet*>& mightSee, size_t cells,
-           const StabbingOptions& options)
-      : g(graph), might(mightSee), stabber(graph.tol, options), visible(cells),
+  Searcher(const Graph& graph, const std::vector<const CellSet*>& mightSee,
+           const std::vector<CellSet>& reachOf, size_t cells, const StabbingOptions& options)
+      : g(graph),
+        might(mightSee),
+        reach(reachOf),
+        stabber(graph.tol, options),
+        visible(cells),
         onPath(cells, 0) {}
 
   const Graph& g;
@@ -111,10 +114,13 @@ struct Searcher {
   // own search is finished) its search result, which is smaller and still conservative (the rest
   // of any sequence through it is a sequence starting with it).
   const std::vector<const CellSet*>& might;
+  // Per cell, the cells a line leaving it may reach: the union of its portals' `might` sets.
+  const std::vector<CellSet>& reach;
   PortalSequenceStabber stabber;
   CellSet visible;
   std::vector<char> onPath;
   std::vector<CellSet> frames;  // might-see set per depth
+  std::vector<int> path;        // the cells before the current one, source first
   uint64_t sequences = 0;
   std::vector<uint64_t> successes, failures;  // stabbing tests by sequence length (Fig. 13)
 
@@ -139,17 +145,32 @@ struct Searcher {
     ++sequences;
     count(1, true);
     onPath[p.from] = onPath[p.to] = 1;
-    frame(1) = *might[pi];
+    // Sightlines are symmetric: a line from cell A = p.from into a cell Y, reversed, leaves Y and
+    // reaches A. So a cell whose `reach` excludes A is not entered (nor anything behind it).
+    CellSet& start = frame(1);
+    start = *might[pi];
+    for (size_t y = 0; y < reach.size(); ++y)
+      if (start.contains(y) && !reach[y].contains(static_cast<size_t>(p.from))) start.erase(y);
+    path.assign(1, p.from);
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
+  }
+
+  bool reachesAll(const CellSet& set) const {
+    for (int c : path)
+      if (!set.contains(static_cast<size_t>(c))) return false;
+    return true;
   }
 
   void recurse(int cell, size_t depth) {
     for (int ri : g.outgoing[cell]) {
       const DirectedPortal& r = g.portals[ri];
       if (onPath[r.to]) continue;  // a line meets a convex cell in one segment
-      frame(depth + 1);  // allocate first: references into `frames` are taken below
+      frame(depth + 1);            // allocate first: references into `frames` are taken below
       if (!frames[depth].contains(r.to)) continue;
+      // The reversed line leaves r.to through r's reverse portal (index ri ^ 1) and passes
+      // through every earlier cell of the path.
+      if (!reachesAll(*might[ri ^ 1])) continue;
       // Nothing this branch might reach is unseen: it cannot change the answer.
       if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], *might[ri], visible)) continue;
       ++sequences;
@@ -158,7 +179,9 @@ struct Searcher {
       if (!stabbed) continue;
       visible.insert(r.to);
       onPath[r.to] = 1;
+      path.push_back(cell);
       recurse(r.to, depth + 1);
+      path.pop_back();
       onPath[r.to] = 0;
       stabber.pop();
     }
@@ -195,8 +218,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
     for (size_t c = 0; c < cells; ++c) {
       u.clear();
       u.insert(c);
-      for (int pi : g.outgoing[c])
-        u.unite(flood[pi]);
+      for (int pi : g.outgoing[c]) u.unite(flood[pi]);
       sum += static_cast<double>(u.count());
     }
     result.meanClustersMightSee = cells ? sum / static_cast<double>(cells) : 0;
@@ -217,9 +239,16 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   std::vector<CellSet> portalVis(np, CellSet(cells));
   std::vector<const CellSet*> might(np);
   for (size_t i = 0; i < np; ++i) might[i] = &flood[i];
+  std::vector<CellSet> reach(cells, CellSet(cells));
+  auto updateReach = [&](size_t c) {
+    reach[c].clear();
+    reach[c].insert(c);
+    for (int pi : g.outgoing[c]) reach[c].unite(*might[pi]);
+  };
+  for (size_t c = 0; c < cells; ++c) updateReach(c);
   tbb::enumerable_thread_specific<Searcher> searchers(
-      [&] { return Searcher(g, might, cells, options.stabbing); });
-  const size_t wave = 32;
+      [&] { return Searcher(g, might, reach, cells, options.stabbing); });
+  const size_t wave = 8;
   for (size_t w0 = 0; w0 < np; w0 += wave) {
     const size_t w1 = std::min(np, w0 + wave);
     auto searchRange = [&](size_t begin, size_t end) {
@@ -231,12 +260,14 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       }
     };
     if (options.parallel) {
-      tbb::parallel_for(tbb::blocked_range<size_t>(w0, w1, 1),
-                        [&](const tbb::blocked_range<size_t>& r) { searchRange(r.begin(), r.end()); });
+      tbb::parallel_for(
+          tbb::blocked_range<size_t>(w0, w1, 1),
+          [&](const tbb::blocked_range<size_t>& r) { searchRange(r.begin(), r.end()); });
     } else {
       searchRange(w0, w1);
     }
     for (size_t k = w0; k < w1; ++k) might[order[k]] = &portalVis[order[k]];
+    for (size_t k = w0; k < w1; ++k) updateReach(static_cast<size_t>(g.portals[order[k]].from));
     if (options.progress) options.progress(w1, np);
   }
   for (const Searcher& s : searchers) {
@@ -252,8 +283,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   std::vector<CellSet> seen(cells, CellSet(cells));
   for (size_t c = 0; c < cells; ++c) {
     seen[c].insert(c);
-    for (int pi : g.outgoing[c])
-      seen[c].unite(portalVis[pi]);
+    for (int pi : g.outgoing[c]) seen[c].unite(portalVis[pi]);
   }
   result.searchSeconds = secondsSince(t1);
 

@@ -43,13 +43,12 @@ struct PlaneThrough3 {
 int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_t i,
                   std::span<const Vec3> verts, size_t j) {
   const size_t ne = edges.size(), nv = verts.size();
-  int sigma = 0;
-  for (size_t k = 0; k < ne; ++k) {
-    if (k == i || k == (i + 1) % ne) continue;
-    const int s = plane.sign(edges[k]);
-    if (s == 0 || (sigma != 0 && s != sigma)) return 0;
-    sigma = s;
-  }
+  // The first vertex of the edge's polygon off the edge sets the side; the vertex's polygon is
+  // tested next (it rejects most candidates), the rest of the edge's polygon last. The conditions
+  // are the same in any order.
+  const size_t k0 = (i + 2) % ne;
+  if (k0 == i) return 0;  // fewer than 3 vertices
+  const int sigma = plane.sign(edges[k0]);
   if (sigma == 0) return 0;
   size_t other = nv;  // a second vertex of `verts` on the plane, if any
   for (size_t k = 0; k < nv; ++k) {
@@ -71,6 +70,10 @@ int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_
     const bool disjoint = (ov != 0 && ov == ow) || (oa != 0 && oa == ob);
     if (!disjoint) return 0;
   }
+  for (size_t k = 0; k < ne; ++k) {
+    if (k == i || k == (i + 1) % ne || k == k0) continue;
+    if (plane.sign(edges[k]) != sigma) return 0;
+  }
   return sigma;
 }
 
@@ -84,12 +87,12 @@ void appendSeparators(std::span<const Vec3> edges, std::span<const Vec3> verts, 
     const Vec3& b = edges[(i + 1) % ne];
     for (size_t j = 0; j < nv; ++j) {
       const PlaneThrough3 plane(a, b, verts[j]);
+      const int sigma = separatorSide(plane, edges, i, verts, j);
+      if (sigma == 0) continue;
       const double lenN = length(plane.n);
       // A nearly collinear (edge, vertex) pair spans a badly conditioned plane: its rounded
       // normal could tilt by more than the clip slack covers, so it is not used (keeping more).
       if (!(lenN > kRelativeModelEpsilon * length(b - a) * length(verts[j] - a))) continue;
-      const int sigma = separatorSide(plane, edges, i, verts, j);
-      if (sigma == 0) continue;
       // Keep the pass's side: the side of `verts` (-sigma) or of `edges` (+sigma).
       const double keep = keepVertsSide ? -sigma : sigma;
       const Vec3 u = plane.n * (keep / lenN);

@@ -64,15 +64,15 @@ PortalSequenceStabber::PortalSequenceStabber(const Tolerance& tol, StabbingOptio
 }
 
 void PortalSequenceStabber::clear() {
-  levels_.clear();
+  depth_ = 0;
   rows_.clear();
   witness_.reset();
 }
 
 void PortalSequenceStabber::pop() {
-  if (levels_.empty()) throw std::logic_error("PortalSequenceStabber::pop on an empty sequence");
-  levels_.pop_back();
-  rows_.resize(levels_.empty() ? 0 : levels_.back().constraintEnd);
+  if (depth_ == 0) throw std::logic_error("PortalSequenceStabber::pop on an empty sequence");
+  --depth_;
+  rows_.resize(depth_ == 0 ? 0 : levels_[depth_ - 1].constraintEnd);
 }
 
 // One LP row per edge a→b of the loop: side(π, e) >= t, i.e. -(d·m_e + m·d_e) + t <= 0, with
@@ -155,14 +155,23 @@ bool crossesForward(const Segment& line, std::span<const Vec3> w) {
 StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   ++stats_.tests;
   witness_.reset();
-  Level level;
+  // Levels are reused slot by slot (their windings keep their capacity): no allocation per push
+  // once the search has been this deep.
+  if (levels_.size() <= depth_) levels_.resize(depth_ + 1);
+  Level& level = levels_[depth_];
   level.original.assign(portal.begin(), portal.end());
-  level.clipped = level.original;
+  level.clipped.assign(portal.begin(), portal.end());
   level.lpValid = options_.useLinearProgram;
+  level.separators.clear();
+  level.separatorsKnown = false;
+  level.witness.reset();
+  level.basis = SimplexBasis{};
+  level.optimal = false;
+  level.optimum = LpVector{};
   const bool degenerate = isDegenerate(portal, tol_);
   if (degenerate) ++stats_.degeneratePortals;
 
-  if (levels_.empty()) {
+  if (depth_ == 0) {
     // The first portal fixes the LP frame.
     origin_ = portal.empty() ? Vec3{} : centroidOf(portal);
     scale_ = tol_.scale;
@@ -170,6 +179,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     firstDegenerate_ = degenerate;
     if (!degenerate) {
       normal_ = normalize(newellNormal(portal));
+      firstMinOffset_ = minDot(normal_, portal);
       pivot_ = dominantAxis(normal_);
     } else {
       level.lpValid = false;  // no crossing direction to normalise by: nothing is provable
@@ -194,23 +204,20 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
       const Segment line{origin_, origin_ + normal_ * scale_};
       if (crossesForward(line, level.original)) w = line;
     }
-    levels_.push_back(std::move(level));
-    return accept(w);
+    return accept(level, w);
   }
 
-  Level& prev = levels_.back();
+  Level& prev = levels_[depth_ - 1];
   level.lpValid = level.lpValid && prev.lpValid;
-  level.source = prev.source;
+  level.source.assign(prev.source.begin(), prev.source.end());
   if (options_.clipBySeparatingPlanes) {
-    const Level& first = levels_.front();
     // The line crosses the first portal's plane once, forward: everything later is in front.
     if (!firstDegenerate_) {
-      const Vec3 n = normalize(newellNormal(first.original));
-      clipToHalfspace(level.clipped, n, minDot(n, first.original), tol_.length(), scratch_);
+      clipToHalfspace(level.clipped, normal_, firstMinOffset_, tol_.length(), scratch_);
       level.clipped.swap(scratch_);
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
-    if (!level.clipped.empty() && levels_.size() >= 2) {
+    if (!level.clipped.empty() && depth_ >= 2) {
       if (!prev.separatorsKnown) {
         separatingPlanes(prev.source, prev.clipped, prev.separators);
         prev.separatorsKnown = true;
@@ -235,7 +242,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     // And the separating planes of (new, previous) portal bound the first portal's useful part
     // (the same lemma for the reversed line; `vis` calls this the back clip). A smaller first
     // portal tightens every later clip, then the new portal is clipped once more by it.
-    if (options_.backClip && levels_.size() >= 2) {
+    if (options_.backClip && depth_ >= 2) {
       const size_t before = level.source.size();
       if (!clipBySeparatingPlanes(level.clipped, prev.clipped, level.source, tol_)) {
         ++stats_.blockedByClipping;
@@ -263,8 +270,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     if (std::optional<Segment> w = cheapWitness(level)) {
       // Proven stabbed without the LP; keep its point an LP point for later lazy steps.
       if (level.lpValid) lowerLazily(level, rowsBefore);
-      levels_.push_back(std::move(level));
-      return accept(w);
+      return accept(level, w);
     }
   }
   if (level.lpValid && testLp(level) == StabbingResult::Blocked) {
@@ -272,14 +278,18 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     ++stats_.blockedByLp;
     return StabbingResult::Blocked;
   }
-  levels_.push_back(std::move(level));
   std::optional<Segment> w;
-  if (levels_.back().lpValid && options_.seekWitness) w = findWitness(levels_.back().optimum);
-  return accept(w);
+  if (level.lpValid && options_.seekWitness) {
+    ++depth_;  // findWitness tests the sequence including the new level
+    w = findWitness(level.optimum);
+    --depth_;
+  }
+  return accept(level, w);
 }
 
-StabbingResult PortalSequenceStabber::accept(std::optional<Segment> witness) {
-  levels_.back().witness = witness;
+StabbingResult PortalSequenceStabber::accept(Level& level, std::optional<Segment> witness) {
+  level.witness = witness;
+  ++depth_;
   if (witness) {
     witness_ = witness;
     ++stats_.stabbed;
@@ -293,7 +303,7 @@ StabbingResult PortalSequenceStabber::accept(std::optional<Segment> witness) {
 // first portal's (clipped) centre to the new portal's (clipped) centre through the common part
 // of all projections. Both confirmed exactly.
 std::optional<Segment> PortalSequenceStabber::cheapWitness(const Level& level) {
-  const Level& prev = levels_.back();
+  const Level& prev = levels_[depth_ - 1];
   if (prev.witness && crossesForward(*prev.witness, level.original)) return prev.witness;
   const Vec3 d = centroidOf(level.clipped) - centroidOf(level.source);
   if (!(lengthSquared(d) > 0)) return std::nullopt;
@@ -302,12 +312,12 @@ std::optional<Segment> PortalSequenceStabber::cheapWitness(const Level& level) {
 
 std::optional<Segment> PortalSequenceStabber::alongDirection(const Vec3& d, const Level* extra) {
   loops_.clear();
-  for (const Level& l : levels_) loops_.emplace_back(l.original);
+  for (size_t i = 0; i < depth_; ++i) loops_.emplace_back(levels_[i].original);
   if (extra) loops_.emplace_back(extra->original);
   std::optional<Segment> line = lineAlongDirection(loops_, d, witnessScratch_);
   if (!line) return std::nullopt;
-  for (const Level& l : levels_)
-    if (!crossesForward(*line, l.original)) return std::nullopt;
+  for (size_t i = 0; i < depth_; ++i)
+    if (!crossesForward(*line, levels_[i].original)) return std::nullopt;
   if (extra && !crossesForward(*line, extra->original)) return std::nullopt;
   return line;
 }
@@ -331,18 +341,18 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
   const LpVector lo = lpBoxLo(), hi = lpBoxHi();
   LpVector c{};
   c[kT] = 1;
-  const size_t first = levels_.back().constraintEnd;
+  const size_t first = levels_[depth_ - 1].constraintEnd;
   const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
   // If the previous point with t lowered is above the margin the answer is "not blocked" without
   // solving anything (most pushes).
   {
-    Level lazy = level;
-    lowerLazily(lazy, first);
-    if (lazy.optimum[kT] >= -kStabbingLpMargin * sizeOf(lazy.optimum)) {
-      level.optimum = lazy.optimum;
-      level.optimal = lazy.optimal;
+    const LpVector saved = level.optimum;
+    const bool savedOptimal = level.optimal;
+    lowerLazily(level, first);
+    if (level.optimum[kT] >= -kStabbingLpMargin * sizeOf(level.optimum))
       return StabbingResult::Unresolved;
-    }
+    level.optimum = saved;
+    level.optimal = savedOptimal;
   }
   ++stats_.lpSolves;
   // The dual simplex, warm-started from the deepest basis on this path; its "blocked" is taken
@@ -394,8 +404,9 @@ std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) {
     const Segment line{toWorld(p), toWorld(p + u)};
     if (confirms(line)) return line;
   }
-  const Vec3 a = centroidOf(levels_.back().source), b = centroidOf(levels_.back().clipped);
-  if (levels_.size() >= 2 && !(a == b)) {
+  const Level& top = levels_[depth_ - 1];
+  const Vec3 a = centroidOf(top.source), b = centroidOf(top.clipped);
+  if (depth_ >= 2 && !(a == b)) {
     const Segment line{a, b};
     if (confirms(line)) return line;
   }
@@ -405,8 +416,8 @@ std::optional<Segment> PortalSequenceStabber::findWitness(const LpVector& x) {
 // Exact: the line crosses every portal as pushed (not clipped) forward.
 bool PortalSequenceStabber::confirms(const Segment& line) const {
   if (line.a == line.b) return false;
-  for (const Level& level : levels_)
-    if (!crossesForward(line, level.original)) return false;
+  for (size_t i = 0; i < depth_; ++i)
+    if (!crossesForward(line, levels_[i].original)) return false;
   return true;
 }
 

@@ -29,19 +29,21 @@ enum class StabbingResult {
 };
 
 /// True unless the sequence is proven blocked: what visibility propagation continues on.
-inline bool mayBeVisible(StabbingResult r) { return r != StabbingResult::Blocked; }
+inline bool mayBeVisible(StabbingResult r) {
+  return r != StabbingResult::Blocked;
+}
 
 /// What the stabber did, summed over all pushes.
 struct StabbingStats {
-  uint64_t tests = 0;                  ///< pushes answered
-  uint64_t blockedByClipping = 0;      ///< target clipped away by separating planes
-  uint64_t blockedByLp = 0;            ///< Plücker LP infeasible beyond the margin
-  uint64_t stabbed = 0;                ///< confirmed by an exact witness line
-  uint64_t unresolved = 0;             ///< LP feasible, no witness: answered "maybe visible"
-  uint64_t lpNumericalFailures = 0;    ///< solver broke down (answered Unresolved)
-  uint64_t degeneratePortals = 0;      ///< portals of ~zero area (their edges are not used)
-  uint64_t lpSolves = 0;               ///< pushes that ran the LP solver (the costly step)
-  uint64_t simplexFallbacks = 0;       ///< of which the dual simplex failed and Seidel's LP ran
+  uint64_t tests = 0;                ///< pushes answered
+  uint64_t blockedByClipping = 0;    ///< target clipped away by separating planes
+  uint64_t blockedByLp = 0;          ///< Plücker LP infeasible beyond the margin
+  uint64_t stabbed = 0;              ///< confirmed by an exact witness line
+  uint64_t unresolved = 0;           ///< LP feasible, no witness: answered "maybe visible"
+  uint64_t lpNumericalFailures = 0;  ///< solver broke down (answered Unresolved)
+  uint64_t degeneratePortals = 0;    ///< portals of ~zero area (their edges are not used)
+  uint64_t lpSolves = 0;             ///< pushes that ran the LP solver (the costly step)
+  uint64_t simplexFallbacks = 0;     ///< of which the dual simplex failed and Seidel's LP ran
 
   StabbingStats& operator+=(const StabbingStats& o);
 };
@@ -104,7 +106,7 @@ class PortalSequenceStabber {
   /// Empties the sequence (keeps statistics).
   void clear();
   /// Number of portals in the sequence.
-  size_t depth() const { return levels_.size(); }
+  size_t depth() const { return depth_; }
 
   /// The last confirmed stabbing line (after a Stabbed push), oriented along the travel direction.
   const std::optional<Segment>& witness() const { return witness_; }
@@ -117,15 +119,15 @@ class PortalSequenceStabber {
 
  private:
   struct Level {
-    Winding original;       // as pushed
-    Winding clipped;        // after separating-plane clipping
-    Winding source;         // the first portal as clipped by this level's plane (for later clips)
-    size_t constraintEnd = 0;  // LP rows of levels [0, this]
-    LpVector optimum{};     // an LP point with those rows (t = its worst row)
-    bool optimal = false;   // whether `optimum` is known to be the LP optimum
-    bool lpValid = false;   // false once the LP broke down (then everything is Unresolved)
+    Winding original;  // as pushed
+    Winding clipped;   // after separating-plane clipping
+    Winding source;    // the first portal as clipped by this level's plane (for later clips)
+    size_t constraintEnd = 0;        // LP rows of levels [0, this]
+    LpVector optimum{};              // an LP point with those rows (t = its worst row)
+    bool optimal = false;            // whether `optimum` is known to be the LP optimum
+    bool lpValid = false;            // false once the LP broke down (then everything is Unresolved)
     std::optional<Segment> witness;  // a confirmed stabbing line of levels [0, this], if known
-    SimplexBasis basis;     // the last LP basis on this path: a warm start for deeper levels
+    SimplexBasis basis;  // the last LP basis on this path: a warm start for deeper levels
     // Separating planes of (source, clipped): they clip every portal pushed after this level.
     std::vector<ClipPlane> separators;
     bool separatorsKnown = false;
@@ -134,8 +136,7 @@ class PortalSequenceStabber {
   StabbingResult testLp(Level& level);
   void lowerLazily(Level& level, size_t firstRow) const;
   std::optional<Segment> cheapWitness(const Level& level);
-  /// Records the outcome of the push that appended the last level.
-  StabbingResult accept(std::optional<Segment> witness);
+  StabbingResult accept(Level& level, std::optional<Segment> witness);
   void appendRows(std::span<const Vec3> loop);
   std::optional<Segment> findWitness(const LpVector& x);
   bool confirms(const Segment& line) const;
@@ -145,7 +146,8 @@ class PortalSequenceStabber {
 
   Tolerance tol_;
   StabbingOptions options_;
-  std::vector<Level> levels_;
+  std::vector<Level> levels_;  // slots [0, depth_) hold the sequence; later ones are spare storage
+  size_t depth_ = 0;
   std::vector<LpConstraint> rows_;
   SeidelLp lp_;
   StabbingStats stats_;
@@ -157,6 +159,7 @@ class PortalSequenceStabber {
   Vec3 normal_;
   int pivot_ = 0;
   bool firstDegenerate_ = false;
+  double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;

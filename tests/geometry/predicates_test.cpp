@@ -4,6 +4,7 @@
 #include <CGAL/Exact_rational.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -18,7 +19,8 @@ int orient3dRational(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d)
   const Rational ux = r(b.x) - r(a.x), uy = r(b.y) - r(a.y), uz = r(b.z) - r(a.z);
   const Rational vx = r(c.x) - r(a.x), vy = r(c.y) - r(a.y), vz = r(c.z) - r(a.z);
   const Rational wx = r(d.x) - r(a.x), wy = r(d.y) - r(a.y), wz = r(d.z) - r(a.z);
-  const Rational det = ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx);
+  const Rational det =
+      ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx);
   return CGAL::sign(det);
 }
 
@@ -30,12 +32,12 @@ int orient3dNaive(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
 
 TEST(PredicatesOrient3d, SignConvention) {
   const Vec3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
-  EXPECT_EQ(orient3d(o, x, y, z), 1);    // z is where cross(x, y) points
-  EXPECT_EQ(orient3d(o, y, x, z), -1);   // swapping two points flips the sign
+  EXPECT_EQ(orient3d(o, x, y, z), 1);   // z is where cross(x, y) points
+  EXPECT_EQ(orient3d(o, y, x, z), -1);  // swapping two points flips the sign
   EXPECT_EQ(orient3d(o, x, y, -z), -1);
   EXPECT_EQ(orient3d(o, x, y, Vec3{3, -7, 0}), 0);
-  EXPECT_EQ(orient3d(x, y, z, o), -1);   // odd permutation of (o, x, y, z)
-  EXPECT_EQ(orient3d(x, y, o, z), 1);    // even permutation
+  EXPECT_EQ(orient3d(x, y, z, o), -1);  // odd permutation of (o, x, y, z)
+  EXPECT_EQ(orient3d(x, y, o, z), 1);   // even permutation
 }
 
 TEST(PredicatesOrient2d, SignConvention) {
@@ -107,7 +109,8 @@ TEST(PredicatesOrient2d, ExactOnNearlyCollinearPoints) {
       const double px = 0.5 + i * 0x1p-53, py = 0.5 + j * 0x1p-53;
       const double qx = 12, qy = 12, rx = 24, ry = 24;
       auto ra = [](double x) { return Rational(x); };
-      const Rational det = (ra(qx) - ra(px)) * (ra(ry) - ra(py)) - (ra(qy) - ra(py)) * (ra(rx) - ra(px));
+      const Rational det =
+          (ra(qx) - ra(px)) * (ra(ry) - ra(py)) - (ra(qy) - ra(py)) * (ra(rx) - ra(px));
       const int exact = CGAL::sign(det);
       EXPECT_EQ(orient2d(px, py, qx, qy, rx, ry), exact);
       const double naive = (qx - px) * (ry - py) - (qy - py) * (rx - px);
@@ -134,6 +137,71 @@ TEST(PredicatesOrient3d, AxisDegenerateQuadruplesMatchExactRationals) {
     }
     const int exact = orient3dRational(p[0], p[1], p[2], p[3]);
     ASSERT_EQ(orient3d(p[0], p[1], p[2], p[3]), exact) << "trial " << trial;
+    (exact == 0 ? zeros : nonZeros)++;
+  }
+  EXPECT_GT(zeros, 1000);
+  EXPECT_GT(nonZeros, 1000);
+}
+
+// The small-integer shortcut (coordinates below 2^15 in magnitude, evaluated in doubles) must
+// agree with exact rationals, at the extremes of the range, on coplanar/collinear constructions
+// (the zeros it exists for) and next to them; just outside the range the exact path still runs.
+TEST(PredicatesSmallIntegers, Orient3dAndOrient2dMatchExactRationals) {
+  std::mt19937_64 rng(5);
+  const int64_t lim = 32767;
+  std::uniform_int_distribution<int64_t> any(-lim, lim), small(-3, 3), pick(0, 2);
+  auto coord = [&]() -> double {
+    const int64_t k = pick(rng);
+    return static_cast<double>(k == 0 ? lim * (any(rng) > 0 ? 1 : -1) - small(rng) * (any(rng) > 0)
+                                      : any(rng));
+  };
+  int zeros = 0, nonZeros = 0, zeros2 = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    Vec3 a{coord(), coord(), coord()}, b{coord(), coord(), coord()}, c{coord(), coord(), coord()};
+    // d = a + i (b - a) + j (c - a) + a small offset, clamped into the range: coplanar when the
+    // offset is zero and nothing was clamped.
+    const double i = static_cast<double>(small(rng)), j = static_cast<double>(small(rng));
+    Vec3 d = a + (b - a) * i + (c - a) * j;
+    if (rng() % 2) d = d + Vec3{double(small(rng)), double(small(rng)), double(small(rng))};
+    for (int k = 0; k < 3; ++k) d[k] = std::clamp(d[k], double(-lim), double(lim));
+    if (trial % 7 == 0) d = a * 0.5 + b * 0.5;  // a collinear triple, maybe off the integers
+    const int exact = orient3dRational(a, b, c, d);
+    ASSERT_EQ(orient3d(a, b, c, d), exact) << trial;
+    (exact == 0 ? zeros : nonZeros)++;
+    // 2D: c2 on the line ab (or next to it) in the xy plane.
+    const double cx = std::clamp(a.x + i * (b.x - a.x), double(-lim), double(lim)) +
+                      (trial % 2 ? 0.0 : double(small(rng)));
+    const double cy = std::clamp(a.y + i * (b.y - a.y), double(-lim), double(lim));
+    auto ra = [](double x) { return Rational(x); };
+    const Rational det2 =
+        (ra(b.x) - ra(a.x)) * (ra(cy) - ra(a.y)) - (ra(b.y) - ra(a.y)) * (ra(cx) - ra(a.x));
+    ASSERT_EQ(orient2d(a.x, a.y, b.x, b.y, cx, cy), CGAL::sign(det2)) << trial;
+    zeros2 += CGAL::sign(det2) == 0;
+  }
+  EXPECT_GT(zeros, 2000);
+  EXPECT_GT(nonZeros, 2000);
+  EXPECT_GT(zeros2, 2000);
+}
+
+// The axis-parallel-line shortcut of orient2d: shared x (or y) coordinates, non-integer values,
+// some triples collinear, some not, against exact rationals.
+TEST(PredicatesOrient2d, AxisParallelTriplesMatchExactRationals) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(-100, 100);
+  int zeros = 0, nonZeros = 0;
+  auto ra = [](double x) { return Rational(x); };
+  for (int trial = 0; trial < 20000; ++trial) {
+    double p[6];
+    for (double& x : p) x = u(rng);
+    // Copy coordinates of the same axis between the points.
+    for (int k = 0; k < 3; ++k) {
+      const int axis = static_cast<int>(rng() % 2);
+      p[2 * (rng() % 3) + axis] = p[2 * (rng() % 3) + axis];
+    }
+    const Rational det = (ra(p[2]) - ra(p[0])) * (ra(p[5]) - ra(p[1])) -
+                         (ra(p[3]) - ra(p[1])) * (ra(p[4]) - ra(p[0]));
+    const int exact = CGAL::sign(det);
+    ASSERT_EQ(orient2d(p[0], p[1], p[2], p[3], p[4], p[5]), exact) << trial;
     (exact == 0 ? zeros : nonZeros)++;
   }
   EXPECT_GT(zeros, 1000);
