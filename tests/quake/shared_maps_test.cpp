@@ -4,9 +4,9 @@
 
 #include <chrono>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 
+#include "bsp/bsp_oracle.h"
 #include "bsp/subdivision.h"
 #include "quake/brush_csg.h"
 #include "quake/map_text.h"
@@ -28,22 +28,7 @@ Vec3 originOf(const MapFile& map, const std::string& className) {
   return {};
 }
 
-/// Cells reachable from `start` through portals.
-std::vector<bool> reachable(const Subdivision& sub, uint32_t start) {
-  std::vector<bool> seen(sub.cells.size(), false);
-  std::deque<uint32_t> queue{start};
-  seen[start] = true;
-  while (!queue.empty()) {
-    const uint32_t c = queue.front();
-    queue.pop_front();
-    for (uint32_t n : sub.neighbours(c))
-      if (!seen[n]) {
-        seen[n] = true;
-        queue.push_back(n);
-      }
-  }
-  return seen;
-}
+using bsptest::reachable;
 
 struct SealReport {
   size_t cells = 0, portals = 0;
