@@ -1,6 +1,8 @@
 // The one-line stderr progress bar: throttled redraws, elapsed time and a linear ETA.
 #include "util/progress_bar.h"
 
+#include <cstdlib>
+
 #include <fmt/core.h>
 #include <unistd.h>
 
@@ -32,6 +34,17 @@ std::string progressLine(const std::string& label, double fraction, double elaps
                                  formatSeconds(elapsedSeconds));
   if (f > 0 && f < 1) line += "  ETA " + formatSeconds(elapsedSeconds * (1 - f) / f);
   return line;
+}
+
+double progressFirstDrawSeconds() {
+  static const double seconds = [] {
+    const char* v = std::getenv("GLOBALVIS_PROGRESS_DELAY");
+    if (!v || !*v) return kProgressFirstDrawSeconds;
+    char* end = nullptr;
+    const double d = std::strtod(v, &end);
+    return (end && *end == '\0' && d >= 0 && std::isfinite(d)) ? d : kProgressFirstDrawSeconds;
+  }();
+  return seconds;
 }
 
 ProgressBar::ProgressBar(std::string label, bool enabled, std::FILE* out, double firstDrawSeconds)

@@ -18,6 +18,11 @@ inline constexpr double kProgressRedrawSeconds = 0.1;
 /// milliseconds on small scenes, and a bar flashing by is noise.
 inline constexpr double kProgressFirstDrawSeconds = 0.5;
 
+/// The delay before a bar first shows: kProgressFirstDrawSeconds, or the environment variable
+/// GLOBALVIS_PROGRESS_DELAY (seconds, >= 0) when set, e.g. 0 to see every stage's bar (tests
+/// use it so that they do not depend on how fast the machine is).
+double progressFirstDrawSeconds();
+
 /// Cells of the bar between its brackets.
 inline constexpr int kProgressBarWidth = 30;
 
@@ -35,7 +40,7 @@ class ProgressBar {
   /// first drawn `firstDrawSeconds` after construction.
   explicit ProgressBar(std::string label, bool enabled = stderrIsTerminal(),
                        std::FILE* out = stderr,
-                       double firstDrawSeconds = kProgressFirstDrawSeconds);
+                       double firstDrawSeconds = progressFirstDrawSeconds());
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
