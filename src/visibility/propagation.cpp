@@ -411,14 +411,17 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     cellReach.resize(sub.cells.size(), CellSet(sub.cells.size()));
     for (size_t c = 0; c < sub.cells.size(); ++c)
       for (uint32_t d : pvs.visibleLeafs[c]) cellReach[c].insert(d);
+    // The search's own Fig. 13 counts, both vectors one length (as SequenceHistogram::add keeps).
+    SequenceHistogram& h = st.cellHistogram;
+    h.successes = std::move(pvs.successesByLength);
+    h.failures = std::move(pvs.failuresByLength);
+    const size_t lengths = std::max(h.successes.size(), h.failures.size());
+    h.successes.resize(lengths, 0);
+    h.failures.resize(lengths, 0);
     uint64_t lengthSum = 0;
-    for (size_t k = 0; k < pvs.successesByLength.size() || k < pvs.failuresByLength.size(); ++k) {
-      const uint64_t ok = k < pvs.successesByLength.size() ? pvs.successesByLength[k] : 0;
-      const uint64_t no = k < pvs.failuresByLength.size() ? pvs.failuresByLength[k] : 0;
-      for (uint64_t i = 0; i < ok; ++i) st.cellHistogram.add(k, true);
-      for (uint64_t i = 0; i < no; ++i) st.cellHistogram.add(k, false);
-      lengthSum += k * (ok + no);
-      st.cellStabbingTests += ok + no;
+    for (size_t k = 0; k < lengths; ++k) {
+      lengthSum += k * (h.successes[k] + h.failures[k]);
+      st.cellStabbingTests += h.successes[k] + h.failures[k];
     }
     for (size_t c = 0; c < sub.cells.size(); ++c) st.cellPairsVisible += pvs.visibleLeafs[c].size();
     st.meanSequenceLength =
