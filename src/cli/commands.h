@@ -16,6 +16,7 @@ Action addInfoCommand(CLI::App& app);
 Action addGenCommand(CLI::App& app);
 Action addCellsCommand(CLI::App& app);
 Action addRadiosityCommand(CLI::App& app);
+Action addPhotonsCommand(CLI::App& app);
 Action addVisCommand(CLI::App& app);
 Action addVerifyCommand(CLI::App& app);
 Action addPvsCommand(CLI::App& app);

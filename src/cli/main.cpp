@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   add(gv::cli::addGenCommand);
   add(gv::cli::addCellsCommand);
   add(gv::cli::addRadiosityCommand);
+  add(gv::cli::addPhotonsCommand);
   add(gv::cli::addVisCommand);
   add(gv::cli::addVerifyCommand);
   add(gv::cli::addPvsCommand);

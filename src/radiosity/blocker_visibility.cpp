@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "linespace/contact_blockers.h"
 #include "linespace/segment_blocking.h"
@@ -117,6 +118,7 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
   e.status = VisibilityStatus::Partial;
   e.raysCast = sampled ? sampled->samples : 0;
   e.fraction = sampled ? sampled->fraction : 0.0;
+  if (sampled) e.clearSamples = std::move(sampled->clearSamples);
   e.tube = addTube(v.blockers);
   return e;
 }

@@ -2,6 +2,7 @@
 #include "radiosity/element_tree.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace gv {
 namespace {
@@ -81,6 +82,43 @@ bool ElementTree::subdivide(uint32_t id) {
   elements_[id].firstChild = first;
   elements_[id].childCount = static_cast<uint32_t>(pieces.size());
   return true;
+}
+
+namespace {
+
+/// The smallest signed distance from `p` (in the polygon's plane) to the lines of its edges,
+/// positive inside: the polygon's normal orients the edges counter-clockwise.
+double insideDepth(const ConvexPolygon& polygon, const Vec3& p) {
+  const std::vector<Vec3>& v = polygon.vertices;
+  double depth = INFINITY;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec3 edge = v[(i + 1) % v.size()] - v[i];
+    const Vec3 inward = cross(polygon.plane.normal, edge);
+    const double len = length(inward);
+    if (len > 0) depth = std::min(depth, dot(p - v[i], inward) / len);
+  }
+  return depth;
+}
+
+}  // namespace
+
+uint32_t ElementTree::deepestContaining(uint32_t root, const Vec3& p) const {
+  uint32_t e = root;
+  while (!elements_[e].isLeaf()) {
+    const Element& el = elements_[e];
+    uint32_t best = el.firstChild;
+    double bestDepth = -INFINITY;
+    for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {
+      const double d = insideDepth(elements_[c].polygon, p);
+      if (d > bestDepth) {
+        bestDepth = d;
+        best = c;
+      }
+      if (d >= 0) break;  // children do not overlap: the first that contains p is the one
+    }
+    e = best;
+  }
+  return e;
 }
 
 size_t ElementTree::leafCount() const {

@@ -35,6 +35,21 @@ double maxChannel(const Rgb& x) {
 /// The rule of three: N agreeing samples bound the missed fraction by ~3 / N (95 %).
 constexpr double kSampleBound = 3.0;
 
+/// Where a Partial link's light passes: one clear sample of its visibility, as the elements its
+/// two ends lie in (the deepest that existed when the link was made) and the form factors that
+/// carry the sample's share of the link between them. A link hands its receiver the source's
+/// mean radiosity, spread evenly; when part of the path is blocked, the part of the source in
+/// view is often not its average and the lit part of the receiver not all of it (a ceiling
+/// patch spanning a lit room and a dark corridor sees only the room's floor). Gathering through
+/// the taps keeps that correlation: a one-room office was 4.2 % dark against light tracing
+/// through the means, 1.6 % through taps. Shares sum to the link's visibility fraction, so each
+/// element's total gather (its mean) is unchanged; only where it lands and from where moves.
+struct Tap {
+  uint32_t a = 0, b = 0;  ///< elements at the sample's ends (descendants of the link's a and b)
+  float intoA = 0;        ///< tap.a gathers intoA · B(tap.b): F_ab · share · A_a / A_tap.a
+  float intoB = 0;        ///< tap.b gathers intoB · B(tap.a)
+};
+
 class Solver {
  public:
   Solver(const Scene& scene, LinkVisibility& visibility, const RadiosityOptions& options)
@@ -84,6 +99,7 @@ class Solver {
       current_ = &round;
       const auto t0 = Clock::now();
       refineLinks(round);
+      compactTaps();
       finishRound(round, t0);
       if (round.linksRefined == 0) {
         refinedNothing = true;
@@ -178,6 +194,17 @@ class Solver {
     link.status = v.status;
     link.tube = v.tube;
     link.samples = static_cast<uint32_t>(std::min<uint64_t>(v.raysCast, UINT32_MAX));
+    if (v.status == VisibilityStatus::Partial && !v.clearSamples.empty()) {
+      link.tapBegin = static_cast<uint32_t>(taps_.size());
+      link.tapCount = static_cast<uint32_t>(v.clearSamples.size());
+      const double fba = fab * ea.area / eb.area;
+      for (const ClearSample& c : v.clearSamples) {
+        const uint32_t ta = tree_.deepestContaining(a, c.from);
+        const uint32_t tb = tree_.deepestContaining(b, c.to);
+        taps_.push_back({ta, tb, static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
+                         static_cast<float>(fba * c.weight * eb.area / tree_[tb].area)});
+      }
+    }
     return link;
   }
 
@@ -391,6 +418,19 @@ class Solver {
     return true;
   }
 
+  /// Drops the taps of links that refinement replaced (they are only appended).
+  void compactTaps() {
+    std::vector<Tap> kept;
+    kept.reserve(taps_.size());
+    for (Link& l : links_) {
+      if (l.tapCount == 0) continue;
+      const auto begin = static_cast<uint32_t>(kept.size());
+      kept.insert(kept.end(), taps_.begin() + l.tapBegin, taps_.begin() + l.tapBegin + l.tapCount);
+      l.tapBegin = begin;
+    }
+    taps_ = std::move(kept);
+  }
+
   bool subdivide(uint32_t e) {
     const bool had = !tree_[e].isLeaf();
     if (!tree_.subdivide(e)) return false;
@@ -413,8 +453,18 @@ class Solver {
       ++sweep;
       std::fill(gathered_.begin(), gathered_.end(), Rgb{});
       for (const Link& l : links_) {
-        gathered_[l.a] += l.formFactorAB * radiosity_[l.b];
-        gathered_[l.b] += l.formFactorBA * radiosity_[l.a];
+        if (l.tapCount == 0) {
+          gathered_[l.a] += l.formFactorAB * radiosity_[l.b];
+          gathered_[l.b] += l.formFactorBA * radiosity_[l.a];
+          continue;
+        }
+        // Partial: each clear sample carries its share from the part of one element it ends
+        // on to the part of the other (see Tap).
+        for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+          const Tap& tap = taps_[t];
+          gathered_[tap.a] += static_cast<double>(tap.intoA) * radiosity_[tap.b];
+          gathered_[tap.b] += static_cast<double>(tap.intoB) * radiosity_[tap.a];
+        }
       }
       maxChange_ = 0;
       maxRadiosity_ = 0;
@@ -488,6 +538,7 @@ class Solver {
   Tolerance tol_;
   ElementTree tree_;
   std::vector<Link> links_;
+  std::vector<Tap> taps_;                    ///< of the Partial links (Link::tapBegin)
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
   std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)

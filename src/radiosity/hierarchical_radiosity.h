@@ -31,6 +31,9 @@ struct Link {
   double frontA = 1;     ///< fraction of a's area in front of b's plane (the part that exchanges)
   double frontB = 1;     ///< fraction of b's area in front of a's plane
   uint32_t samples = 0;  ///< rays the visibility came from (0: exact, e.g. no possible blocker)
+  /// Partial links: the solver's taps (the oracle's clear samples mapped to the elements they
+  /// end on) are tapBegin .. tapBegin + tapCount - 1 of its tap store; 0 taps: gather the means.
+  uint32_t tapBegin = 0, tapCount = 0;
 };
 
 /// Solver parameters. Defaults aim at converged answers (per-patch errors well below 1 %) on

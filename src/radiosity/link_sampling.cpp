@@ -23,12 +23,18 @@ std::optional<SampledVisibility> sampleLinkVisibility(
     if (!blocked(from[i], to[i])) {
       ++v.clear;
       weightClear += w;
+      v.clearSamples.push_back({from[i], to[i], w});
     }
   }
   v.samples = from.size();
-  v.fraction = weightAll > 0 ? weightClear / weightAll
-                             : (v.samples ? static_cast<double>(v.clear) / static_cast<double>(v.samples)
-                                          : 1.0);
+  if (weightAll > 0) {
+    v.fraction = weightClear / weightAll;
+    for (ClearSample& c : v.clearSamples) c.weight /= weightAll;
+  } else {
+    // No kernel weight at all (rounding at grazing angles): count the samples instead.
+    v.fraction = v.samples ? static_cast<double>(v.clear) / static_cast<double>(v.samples) : 1.0;
+    for (ClearSample& c : v.clearSamples) c.weight = 1.0 / static_cast<double>(v.samples);
+  }
   return v;
 }
 

@@ -8,14 +8,16 @@
 
 #include "geometry/convex_polygon.h"
 #include "geometry/tolerance.h"
+#include "radiosity/link_visibility.h"
 #include "radiosity/polygon_sampling.h"
 
 namespace gv {
 
 struct SampledVisibility {
-  double fraction = 1;  ///< kernel-weighted fraction of free samples, in [0, 1]
-  size_t samples = 0;   ///< segments tested
-  size_t clear = 0;     ///< of which free
+  double fraction = 1;                    ///< kernel-weighted fraction of free samples, in [0, 1]
+  size_t samples = 0;                     ///< segments tested
+  size_t clear = 0;                       ///< of which free
+  std::vector<ClearSample> clearSamples;  ///< the free ones, weights summing to `fraction`
 };
 
 /// `count` segments between stratified points of the parts of `a` and `b` that exchange light

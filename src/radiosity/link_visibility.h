@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <string_view>
+#include <vector>
 
 #include "linespace/visibility_status.h"
 #include "radiosity/element_tree.h"
@@ -21,6 +22,13 @@ namespace gv {
 using TubeId = uint32_t;
 inline constexpr TubeId kNoTube = std::numeric_limits<TubeId>::max();
 
+/// One sampled segment between two elements that light passes: its ends and its share of the
+/// link's kernel-weighted samples (the shares of a link's clear samples sum to its fraction).
+struct ClearSample {
+  Vec3 from, to;  ///< on the first and on the second element
+  double weight = 0;
+};
+
 /// What an oracle says about the light path between two elements.
 struct VisibilityEstimate {
   VisibilityStatus status = VisibilityStatus::Visible;
@@ -29,6 +37,11 @@ struct VisibilityEstimate {
   double fraction = 1.0;
   TubeId tube = kNoTube;  ///< state handed back as `parentTube` when this link is refined
   uint64_t raysCast = 0;  ///< work done, for the statistics
+  /// Partial links: the clear samples, i.e. where light passes. The solver gathers through them
+  /// from the parts of the elements they end on rather than from the elements' means: the part
+  /// of a source that a receiver sees is often not its average (the floor of the lit room, not
+  /// of the corridor that the same floor patch also covers). Empty otherwise.
+  std::vector<ClearSample> clearSamples;
 };
 
 /// A visibility oracle for links. The solver calls, in order: forEachCandidatePair once, then

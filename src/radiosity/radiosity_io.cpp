@@ -40,14 +40,22 @@ double maxChannel(const Rgb& c) {
 }  // namespace
 
 void writeRadiosityTxt(const RadiosityResult& result, const std::string& path) {
+  writePatchRgbTxt(result.patchRadiosity,
+                   fmt::format("patch R G B = area-weighted mean radiosity (linear, same units as "
+                               "Ke)\n# visibility {}, {} patches, converged {}",
+                               result.stats.visibility, result.patchRadiosity.size(),
+                               result.stats.converged ? "yes" : "no"),
+                   path);
+}
+
+void writePatchRgbTxt(const std::vector<Rgb>& values, const std::string& header,
+                      const std::string& path) {
   try {
     auto out = fmt::output_file(path);
     out.print("# globalvis radiosity: one line per patch of patches.obj, in face order\n");
-    out.print("# patch R G B = area-weighted mean radiosity (linear, same units as Ke)\n");
-    out.print("# visibility {}, {} patches, converged {}\n", result.stats.visibility,
-              result.patchRadiosity.size(), result.stats.converged ? "yes" : "no");
-    for (size_t p = 0; p < result.patchRadiosity.size(); ++p) {
-      const Rgb& b = result.patchRadiosity[p];
+    out.print("# {}\n", header);
+    for (size_t p = 0; p < values.size(); ++p) {
+      const Rgb& b = values[p];
       out.print("{} {:.9g} {:.9g} {:.9g}\n", p, b.r, b.g, b.b);
     }
   } catch (const std::exception& e) {
@@ -128,8 +136,10 @@ void writeElementsPly(const RadiosityResult& result, const std::string& path, do
     out.print("element vertex {}\nproperty double x\nproperty double y\nproperty double z\n",
               mesh.positions.size());
     out.print("property uchar red\nproperty uchar green\nproperty uchar blue\n");
-    out.print("property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n");
-    out.print("element face {}\nproperty list uchar int vertex_indices\nend_header\n", mesh.faces.size());
+    out.print(
+        "property float radiosity_r\nproperty float radiosity_g\nproperty float radiosity_b\n");
+    out.print("element face {}\nproperty list uchar int vertex_indices\nend_header\n",
+              mesh.faces.size());
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
       const Vec3& p = mesh.positions[v];
       const Rgb& c = mesh.vertexRadiosity[v];

@@ -13,6 +13,10 @@ namespace gv {
 /// (= face order of patches.obj), the area-weighted mean radiosity of the patch. Throws
 /// InputError when the file cannot be written.
 void writeRadiosityTxt(const RadiosityResult& result, const std::string& path);
+/// One line per patch, `patch R G B`, after `#` comment lines (the last are `# header`): the
+/// format of radiosity.txt, also used for the photon reference and its standard errors.
+void writePatchRgbTxt(const std::vector<Rgb>& values, const std::string& header,
+                      const std::string& path);
 
 /// Table 1 of the paper for this run: per round the links by class (V/P/I with percentages of
 /// the links created), elements, interactions, rays and seconds; plus totals and the options.

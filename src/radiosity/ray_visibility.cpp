@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "radiosity/form_factor.h"
 #include "radiosity/link_sampling.h"
@@ -39,9 +40,10 @@ VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, T
   VisibilityEstimate e;
   e.raysCast = v->samples;
   e.fraction = v->fraction;
-  e.status = v->clear == 0 ? VisibilityStatus::Invisible
-                           : (v->clear == v->samples ? VisibilityStatus::Visible
-                                                     : VisibilityStatus::Partial);
+  e.status = v->clear == 0
+                 ? VisibilityStatus::Invisible
+                 : (v->clear == v->samples ? VisibilityStatus::Visible : VisibilityStatus::Partial);
+  if (e.status == VisibilityStatus::Partial) e.clearSamples = std::move(v->clearSamples);
   return e;
 }
 

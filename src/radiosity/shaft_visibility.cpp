@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "radiosity/form_factor.h"
 #include "radiosity/link_sampling.h"
@@ -80,9 +81,10 @@ VisibilityEstimate ShaftVisibility::estimate(const Element& a, const Element& b,
   if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0};
   e.raysCast = v->samples;
   e.fraction = v->fraction;
-  e.status = v->clear == 0 ? VisibilityStatus::Invisible
-                           : (v->clear == v->samples ? VisibilityStatus::Visible
-                                                     : VisibilityStatus::Partial);
+  e.status = v->clear == 0
+                 ? VisibilityStatus::Invisible
+                 : (v->clear == v->samples ? VisibilityStatus::Visible : VisibilityStatus::Partial);
+  if (e.status == VisibilityStatus::Partial) e.clearSamples = std::move(v->clearSamples);
   e.tube = store(std::move(list));
   return e;
 }

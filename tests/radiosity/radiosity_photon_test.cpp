@@ -13,6 +13,7 @@
 #include "generators/scene_builder.h"
 #include "radiosity/furnace_scene.h"
 #include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/photon_comparison.h"
 #include "radiosity/photon_reference.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
@@ -20,42 +21,9 @@
 namespace gv {
 namespace {
 
-/// Patch channels whose photon estimate has a relative standard error below this take part (small
-/// or dim patches get few photons; their estimate says little).
-constexpr double kMeaningfulNoise = 0.01;
 /// Allowed per-patch deviation: this many photon standard errors plus a fraction of the value
 /// (the solver's discretisation error at default options; per scene below).
 constexpr double kSigmas = 4.0;
-
-struct Comparison {
-  size_t compared = 0, failures = 0;
-  double maxRelative = 0, rmsRelative = 0, meanSigned = 0;
-};
-
-Comparison compare(const Scene& scene, const std::vector<Rgb>& solver, const PhotonResult& ref,
-                   double allowance) {
-  Comparison c;
-  double sumSq = 0;
-  for (size_t p = 0; p < scene.patches.size(); ++p) {
-    const double s[3] = {solver[p].r, solver[p].g, solver[p].b};
-    const double m[3] = {ref.radiosity[p].r, ref.radiosity[p].g, ref.radiosity[p].b};
-    const double e[3] = {ref.standardError[p].r, ref.standardError[p].g, ref.standardError[p].b};
-    for (int ch = 0; ch < 3; ++ch) {
-      if (!(m[ch] > 0) || e[ch] > kMeaningfulNoise * m[ch]) continue;
-      const double rel = (s[ch] - m[ch]) / m[ch];
-      ++c.compared;
-      sumSq += rel * rel;
-      c.meanSigned += rel;
-      c.maxRelative = std::max(c.maxRelative, std::abs(rel));
-      if (std::abs(s[ch] - m[ch]) > kSigmas * e[ch] + allowance * m[ch]) ++c.failures;
-    }
-  }
-  if (c.compared > 0) {
-    c.rmsRelative = std::sqrt(sumSq / static_cast<double>(c.compared));
-    c.meanSigned /= static_cast<double>(c.compared);
-  }
-  return c;
-}
 
 /// Solver (defaults, `rays`, 16 rays per link) against photons: every meaningful patch channel
 /// within kSigmas standard errors plus `allowance`; the mean signed error within `meanBias`.
@@ -68,7 +36,7 @@ void checkAgainstPhotons(const Scene& scene, uint64_t photons, size_t minCompare
   PhotonOptions po;
   po.photons = photons;
   const PhotonResult ref = photonReference(scene, bvh, po);
-  const Comparison c = compare(scene, r.patchRadiosity, ref, allowance);
+  const PhotonComparison c = comparePhotons(scene, r.patchRadiosity, ref, kSigmas, allowance);
   std::printf(
       "compared %zu patch channels: max %.4f rms %.4f mean signed %+.4f, %zu beyond "
       "tolerance; %llu photon rays\n",
