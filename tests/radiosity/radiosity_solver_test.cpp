@@ -11,6 +11,7 @@
 #include "radiosity/element_tree.h"
 #include "radiosity/furnace_scene.h"
 #include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/polygon_sampling.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
 
@@ -141,6 +142,42 @@ TEST(RadiosityElementTest, SplitsPartitionTheirParent) {
     }
     EXPECT_NEAR(area, p.area(), 1e-12 * p.area());
   }
+}
+
+TEST(RadiosityElementTest, DeepestContainingFindsThePieceUnderAPoint) {
+  // A 4 x 2 patch: its pieces are checked against the point-in-polygon test of the geometry
+  // kernel, for random points and for points on the cuts between pieces.
+  Scene scene;
+  const uint32_t grey = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  SceneBuilder builder(scene, Tolerance{4.0});
+  ASSERT_TRUE(builder.addAxisRect(2, true, {0, 0, 0}, {4, 2, 0}, grey));
+  ElementTree tree(scene);
+  ASSERT_TRUE(tree.subdivide(0));
+  for (uint32_t c = tree[0].firstChild; c < tree[0].firstChild + tree[0].childCount; ++c)
+    ASSERT_TRUE(tree.subdivide(c));
+  const uint32_t leaves = static_cast<uint32_t>(tree.size());
+  ASSERT_EQ(tree.leafCount(), 16u);
+  const Tolerance tol{4.0};
+  SplitMix64 rng(3);
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p{4 * rng.uniform(), 2 * rng.uniform(), 0};
+    const uint32_t e = tree.deepestContaining(0, p);
+    ASSERT_LT(e, leaves);
+    EXPECT_TRUE(tree[e].isLeaf());
+    EXPECT_TRUE(tree[e].polygon.contains(p, tol)) << p.x << " " << p.y;
+  }
+  // On a cut (x = 2 is the first split): either side is right, but it must contain the point.
+  for (double y : {0.0, 0.25, 1.0, 1.9}) {
+    const Vec3 p{2, y, 0};
+    EXPECT_TRUE(tree[tree.deepestContaining(0, p)].polygon.contains(p, tol)) << y;
+  }
+  // A point a rounding error outside the patch still gets the nearest piece.
+  const uint32_t corner = tree.deepestContaining(0, {4 + 1e-12, -1e-12, 0});
+  EXPECT_TRUE(tree[corner].polygon.contains({4, 0, 0}, tol));
+  // Below an inner element only its descendants are candidates.
+  const uint32_t child = tree[0].firstChild;
+  const Vec3 inside = tree[child].polygon.centroid();
+  EXPECT_EQ(tree[tree.deepestContaining(child, inside)].parent, child);
 }
 
 }  // namespace

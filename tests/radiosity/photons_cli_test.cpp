@@ -1,0 +1,114 @@
+// `globalvis photons`: the light-tracing reference through the CLI (Howell C-11 through OBJ/MTL
+// files), its comparison of a `radiosity` run, and its errors on bad input.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+#include "support/run_cli.h"
+#include "support/temp_dir.h"
+
+namespace gv {
+namespace {
+
+std::vector<std::array<double, 3>> readRows(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::vector<std::array<double, 3>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream s(line);
+    size_t id;
+    std::array<double, 3> c{};
+    s >> id >> c[0] >> c[1] >> c[2];
+    EXPECT_EQ(id, rows.size());
+    rows.push_back(c);
+  }
+  return rows;
+}
+
+std::filesystem::path writePair(const std::filesystem::path& dir) {
+  test::writeFile(dir / "pair.mtl",
+                  "newmtl grey\nKd 0.6 0.6 0.6\nKe 0 0 0\n"
+                  "newmtl light\nKd 0 0 0\nKe 3 2 1\n");
+  // Receiver: unit square at z = 0 facing up. Emitter: unit square at z = 1 facing down.
+  test::writeFile(dir / "pair.obj",
+                  "mtllib pair.mtl\n"
+                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                  "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                  "usemtl grey\nf 1 2 3 4\n"
+                  "usemtl light\nf 5 8 7 6\n");
+  return dir / "pair.obj";
+}
+
+TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
+  const auto dir = test::scratchDir();
+  const auto scene = writePair(dir);
+  const auto run = dir / "run", ref = dir / "ref";
+  ASSERT_EQ(
+      test::runCli("radiosity '" + scene.string() + "' -o '" + run.string() + "' -q --no-pictures")
+          .exitCode,
+      0);
+  const test::CliResult r =
+      test::runCli("photons '" + scene.string() + "' -o '" + ref.string() +
+                   "' --photons 400000 --compare '" + run.string() + "' --allowance 0.02");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("vs photons over"), std::string::npos) << r.output;
+
+  const auto b = readRows(ref / "radiosity.txt"), e = readRows(ref / "standard_error.txt");
+  ASSERT_EQ(b.size(), 2u);
+  ASSERT_EQ(e.size(), 2u);
+  const double expected = 0.6 * 3 * 0.19982;  // ρ E F, F from Howell C-11 (X = Y = 1)
+  EXPECT_NEAR(b[0][0], expected, 4 * e[0][0]);
+  EXPECT_LT(e[0][0], 0.01 * expected);
+  EXPECT_EQ(b[1][0], 3);  // the emitter reflects nothing: B = E exactly
+  std::ifstream stats(ref / "stats.json");
+  const nlohmann::json j = nlohmann::json::parse(stats);
+  EXPECT_EQ(j["photons"], 400000);
+  EXPECT_EQ(j["comparison"]["beyond_tolerance"], 0);
+  EXPECT_LT(j["comparison"]["max_relative"].get<double>(), 0.02);
+}
+
+TEST(PhotonsCliTest, ComparisonBeyondToleranceExitsOne) {
+  const auto dir = test::scratchDir();
+  const auto scene = writePair(dir);
+  // A "run" that is 10 % too bright on the receiver.
+  std::filesystem::create_directories(dir / "bright");
+  test::writeFile(
+      dir / "bright" / "radiosity.txt",
+      "# made up\n0 " + std::to_string(1.1 * 0.6 * 3 * 0.19982) + " 0.1 0.1\n1 3 2 1\n");
+  const test::CliResult r =
+      test::runCli("photons '" + scene.string() + "' -o '" + (dir / "ref").string() +
+                   "' --photons 100000 --compare '" + (dir / "bright").string() + "'");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+}
+
+TEST(PhotonsCliTest, BadInputIsNamed) {
+  const auto dir = test::scratchDir();
+  const auto scene = writePair(dir);
+  const test::CliResult missing = test::runCli("photons '" + (dir / "nope.obj").string() +
+                                               "' -o '" + (dir / "o").string() + "'");
+  EXPECT_EQ(missing.exitCode, 2) << missing.output;
+  EXPECT_NE(missing.output.find("nope.obj"), std::string::npos) << missing.output;
+  // A run of another scene: its radiosity.txt has the wrong number of patches.
+  std::filesystem::create_directories(dir / "other");
+  test::writeFile(dir / "other" / "radiosity.txt", "0 1 1 1\n");
+  const test::CliResult wrong =
+      test::runCli("photons '" + scene.string() + "' -o '" + (dir / "o").string() +
+                   "' --compare '" + (dir / "other").string() + "'");
+  EXPECT_EQ(wrong.exitCode, 2) << wrong.output;
+  EXPECT_NE(wrong.output.find("radiosity.txt"), std::string::npos) << wrong.output;
+  EXPECT_NE(
+      test::runCli("photons '" + scene.string() + "' -o '" + (dir / "o").string() + "' --photons 0")
+          .exitCode,
+      0);
+  EXPECT_NE(
+      test::runCli("photons '" + scene.string() + "' -o '" + (dir / "o").string() + "' --batches 1")
+          .exitCode,
+      0);
+}
+
+}  // namespace
+}  // namespace gv
