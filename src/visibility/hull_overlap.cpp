@@ -27,6 +27,10 @@ bool separated(const Range& h, const Range& q, double e) {
   return (h.hi <= e && q.lo >= -e) || (h.lo >= -e && q.hi <= e);
 }
 
+/// Unit normals closer than this in every coordinate (and offsets within the length tolerance)
+/// are one plane: rounding in the cross products of nearby vertices is ~1e-15 of the scene.
+constexpr double kRepeatedNormal = 1e-9;
+
 bool boxesMeet(const Aabb& a, const Aabb& b, double eps) {
   return a.lo.x <= b.hi.x + eps && b.lo.x <= a.hi.x + eps && a.lo.y <= b.hi.y + eps &&
          b.lo.y <= a.hi.y + eps && a.lo.z <= b.hi.z + eps && b.lo.z <= a.hi.z + eps;
@@ -40,12 +44,24 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
   box_.add(r.bounds());
   hull_ = s.vertices;
   hull_.insert(hull_.end(), r.vertices.begin(), r.vertices.end());
+  auto add = [&](const Vec3& n, double c) {
+    for (size_t i = 0; i < c_.size(); ++i)
+      if (std::abs(nx_[i] - n.x) <= kRepeatedNormal && std::abs(ny_[i] - n.y) <= kRepeatedNormal &&
+          std::abs(nz_[i] - n.z) <= kRepeatedNormal && std::abs(c_[i] - c) <= eps_)
+        return;
+    nx_.push_back(n.x);
+    ny_.push_back(n.y);
+    nz_.push_back(n.z);
+    c_.push_back(c);
+  };
   auto consider = [&](const Vec3& n, const Vec3& o) {
     const double len = length(n);
-    if (len == 0) return;
-    const double e = eps_ * len;
-    const Range h = rangeOf(hull_, n, o);
-    if (h.hi <= e || h.lo >= -e) planes_.push_back({n, o, h.lo, h.hi, e});
+    if (!(len > 0)) return;
+    const Vec3 u = n * (1 / len);
+    const Range h = rangeOf(hull_, u, o);
+    const double c = dot(u, o);
+    if (h.hi <= eps_) add(u, c);     // hull behind: separates what lies in front
+    if (h.lo >= -eps_) add(-u, -c);  // hull in front: separates what lies behind
   };
   consider(s.plane.normal, s.vertices[0]);
   consider(r.plane.normal, r.vertices[0]);
@@ -60,6 +76,10 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
   }
 }
 
+bool PairHull::boxMeets(const Aabb& bBox) const {
+  return boxesMeet(box_, bBox, eps_);
+}
+
 bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
   if (!boxesMeet(box_, bBox, eps_)) return false;
   const std::vector<Vec3>& bv = b.vertices;
@@ -69,8 +89,16 @@ bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
     if (len > 0 && separated(rangeOf(hull_, n, bv[0]), rangeOf(bv, n, bv[0]), eps_ * len))
       return false;
   }
-  for (const SidePlane& p : planes_)
-    if (separated({p.lo, p.hi}, rangeOf(bv, p.n, p.o), p.eps)) return false;
+  const size_t planes = c_.size();
+  for (size_t i = 0; i < planes; ++i) {
+    bool separates = true;  // every vertex of b at or beyond the plane (within eps)
+    for (const Vec3& v : bv)
+      if (nx_[i] * v.x + ny_[i] * v.y + nz_[i] * v.z - c_[i] < -eps_) {
+        separates = false;
+        break;
+      }
+    if (separates) return false;
+  }
   return true;
 }
 

@@ -11,7 +11,11 @@
 // the portals that segment crossed, and the segment crosses that patch after those portals, so
 // the search saw it (stabbing is never "no" when a line exists).
 #include "visibility/propagation.h"
-#include "util/timing.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -20,14 +24,11 @@
 #include <mutex>
 #include <optional>
 
-#include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
-#include "visibility/hull_overlap.h"
 #include "quake/leaf_pvs.h"
+#include "util/timing.h"
+#include "visibility/hull_overlap.h"
 #include "visibility/might_see.h"
+#include "visibility/patch_grid.h"
 
 namespace gv {
 namespace {
@@ -82,6 +83,7 @@ struct PatchSearchResult {
   std::vector<std::pair<uint32_t, uint8_t>> seen;  ///< (patch, flags), sorted by patch
   std::vector<uint32_t> sameCellVisible;           ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
+  uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
 };
 
 using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
@@ -120,10 +122,17 @@ class PatchSearch {
   PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
               const Placements& placements, const PortalReach& might,
               const std::vector<CellSet>& cellReach, const Tolerance& tol)
-      : sub_(sub), cellPatches_(cellPatches), placements_(placements), might_(might),
+      : sub_(sub),
+        cellPatches_(cellPatches),
+        placements_(placements),
+        might_(might),
         cellReach_(cellReach),
-        stabber_(tol), flags_(placements.size(), 0), onPath_(sub.cells.size(), 0),
-        unsaturatedCount_(sub.cells.size(), 0), unsaturated_(sub.cells.size()) {
+        stabber_(tol),
+        flags_(placements.size(), 0),
+        onPath_(sub.cells.size(), 0),
+        unsaturatedCount_(sub.cells.size(), 0),
+        unsaturated_(sub.cells.size()),
+        tol_(tol) {
     for (uint32_t c = 0; c < sub.cells.size(); ++c) {
       baseCount_.push_back(static_cast<uint32_t>(cellPatches[c].size()));
       if (!cellPatches[c].empty()) unsaturated_.insert(c);
@@ -134,6 +143,7 @@ class PatchSearch {
   PatchSearchResult run(uint32_t s) {
     PatchSearchResult result;
     stabber_.resetStats();
+    facingRuleTests_ = 0;
     source_ = s;
     // The source's own pieces are never targets: they count as saturated.
     for (auto [cell, k] : placements_[s]) decrement(cell);
@@ -142,6 +152,7 @@ class PatchSearch {
       if (!cp.facesIn && !cp.interior) continue;  // S's front does not look into this cell
       stabber_.clear();
       if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
+      sourcePiece_ = &cp.piece;
       const bool cellEmpty = sub_.cells[cell].interiorPatches.empty();
       if (cp.whole && cellEmpty) {
         for (const CellPatch& t : cellPatches_[cell])
@@ -165,6 +176,7 @@ class PatchSearch {
     result.sameCellVisible.erase(std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
                                  result.sameCellVisible.end());
     result.stabbing = stabber_.stats();
+    result.facingRuleTests = facingRuleTests_;
     return result;
   }
 
@@ -186,9 +198,46 @@ class PatchSearch {
     }
   }
 
+  /// The sequence (S's piece, T's piece) inside one convex cell, decided without the stabbing
+  /// kernel. A line crossing S along its normal, then T from front to back, exists iff some
+  /// point q of T lies in front of S's plane and some point p of S in front of T's plane: the
+  /// line p→q is one (its direction q − p has nS·(q − p) = dS(q) > 0 and nT·(q − p) = −dT(p) < 0),
+  /// and any such line meets S and T at points with those signs. Crossing T from back to front
+  /// needs a p behind T instead. Exact up to the length tolerance, below which the kernel's
+  /// grazing limit already gives no line.
+  void testInSourceCell(const CellPatch& t) {
+    const uint8_t have = flags_[t.patch];
+    const bool wantFront = (t.facesIn || t.interior) && !(have & kSeenFront);
+    const bool wantBack = (!t.facesIn || t.interior) && !(have & kSeen);
+    if (!wantFront && !wantBack) return;
+    const double eps = tol_.length();
+    double tInFrontOfS = -INFINITY;
+    for (const Vec3& q : t.piece.vertices)
+      tInFrontOfS = std::max(tInFrontOfS, sourcePiece_->plane.distance(q));
+    double hi = -INFINITY, lo = INFINITY;
+    for (const Vec3& p : sourcePiece_->vertices) {
+      const double d = t.piece.plane.distance(p);
+      hi = std::max(hi, d);
+      lo = std::min(lo, d);
+    }
+    const bool leavesS = tInFrontOfS > eps;
+    if (wantFront) {
+      ++facingRuleTests_;
+      if (leavesS && hi > eps) mark(t.patch, kSeen | kSeenFront);
+    }
+    if (wantBack && !(flags_[t.patch] & kSeen)) {
+      ++facingRuleTests_;
+      if (leavesS && lo < -eps) mark(t.patch, kSeen);
+    }
+  }
+
   /// Tests T crossed the way a sightline arriving from inside the cell crosses it.
   void testTarget(const CellPatch& t) {
     if (t.patch == source_) return;
+    if (stabber_.depth() == 1) {
+      testInSourceCell(t);
+      return;
+    }
     const uint8_t have = flags_[t.patch];
     // Front hit: the line crosses T from its front to its back (loop reversed = travel normal).
     if ((t.facesIn || t.interior) && !(have & kSeenFront)) {
@@ -248,6 +297,9 @@ class PatchSearch {
   std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
   std::vector<Vec3> scratch_;
   uint32_t source_ = 0;
+  const ConvexPolygon* sourcePiece_ = nullptr;  // S's piece that starts the current sequence
+  uint64_t facingRuleTests_ = 0;
+  Tolerance tol_;
 };
 
 /// Cell-to-cell search from one source cell: counts and the Fig. 13 histogram.
@@ -517,8 +569,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         }
       });
   StabbingStats stabbing;
-  for (const PatchSearchResult& r : seen) stabbing += r.stabbing;
-  st.patchStabbingTests = stabbing.tests;
+  for (const PatchSearchResult& r : seen) {
+    stabbing += r.stabbing;
+    st.patchFacingRuleTests += r.facingRuleTests;
+  }
+  st.patchStabbingTests = stabbing.tests + st.patchFacingRuleTests;
   st.patchStabbing = stabbing;
   st.unresolvedStabbing = stabbing.unresolved + stabbing.lpNumericalFailures;
   st.patchSeconds = secondsSince(patchStart);
@@ -536,13 +591,24 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   };
   std::vector<Aabb> patchBoxes(n);
   for (size_t p = 0; p < n; ++p) patchBoxes[p] = scene.patches[p].polygon.bounds();
+  // Candidates come from a grid of patch boxes: only patches whose boxes meet conv(S, T)'s box
+  // can meet conv(S, T), so the scan no longer walks all of seen(S) and seen(T) for every pair.
+  const PatchGrid grid(patchBoxes);
+  struct BlockerWorker {
+    PatchGrid::Query query;
+    std::vector<uint8_t> seenFromS;  ///< per patch: in seen(S) of the current source
+    std::vector<uint32_t> candidates;
+  };
   std::vector<std::vector<Interaction>> perSource(n);
   std::atomic<size_t> sourcesDone{0};
   std::mutex blockerProgressMutex;
   size_t sourcesReported = 0;
   parallelFor(
-      n, threads, [] { return 0; },
-      [&](int&, size_t si) {
+      n, threads,
+      [&] {
+        return BlockerWorker{PatchGrid::Query(grid), std::vector<uint8_t>(n, 0), {}};
+      },
+      [&](BlockerWorker& w, size_t si) {
         if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
           throw PropagationDeadlineExceeded();
         if (options.blockerProgress) {
@@ -554,6 +620,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         }
         const auto s = static_cast<uint32_t>(si);
         const ConvexPolygon& sp = scene.patches[s].polygon;
+        for (const auto& [t, f] : seen[s].seen) w.seenFromS[t] = 1;
         for (const auto& [t, f] : seen[s].seen) {
           if (t <= s) continue;
           // Both searches are conservative and a sightline runs both ways, so a real pair is seen
@@ -564,25 +631,26 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           Interaction in{s, t, {}};
           if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
             const PairHull hull(sp, tp, tol);
-            const auto& a = seen[s].seen;
+            Aabb box = patchBoxes[s];
+            box.add(patchBoxes[t]);
+            w.candidates.clear();
+            // The slack is PairHull's box tolerance: the grid returns a superset of what meets.
+            w.query.gather(box, tol.length(), w.candidates);
             const auto& b = seen[t].seen;
-            // Both lists are sorted by patch: merge them, each candidate once and in order.
-            for (size_t i = 0, j = 0; i < a.size() || j < b.size();) {
-              uint32_t c;
-              if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) {
-                c = a[i++].first;
-              } else if (i == a.size() || b[j].first < a[i].first) {
-                c = b[j++].first;
-              } else {
-                c = a[i].first;
-                ++i, ++j;
-              }
-              if (c != s && c != t && hull.meets(scene.patches[c].polygon, patchBoxes[c]))
-                in.blockers.push_back(c);
+            for (uint32_t c : w.candidates) {
+              if (c == s || c == t || !hull.boxMeets(patchBoxes[c])) continue;
+              if (!w.seenFromS[c] &&
+                  !std::binary_search(
+                      b.begin(), b.end(), std::make_pair(c, uint8_t{0}),
+                      [](const auto& x, const auto& y) { return x.first < y.first; }))
+                continue;
+              if (hull.meets(scene.patches[c].polygon, patchBoxes[c])) in.blockers.push_back(c);
             }
+            std::sort(in.blockers.begin(), in.blockers.end());
           }
           perSource[s].push_back(std::move(in));
         }
+        for (const auto& [t, f] : seen[s].seen) w.seenFromS[t] = 0;
         ++sourcesDone;
       });
   if (options.blockerProgress) options.blockerProgress(n, n);
