@@ -12,7 +12,7 @@ namespace {
 struct Range {
   double lo = INFINITY, hi = -INFINITY;
 };
-Range rangeOf(const std::vector<Vec3>& points, const Vec3& n, const Vec3& o) {
+Range rangeOf(std::span<const Vec3> points, const Vec3& n, const Vec3& o) {
   Range r;
   for (const Vec3& p : points) {
     const double d = dot(n, p - o);
@@ -81,14 +81,11 @@ bool PairHull::boxMeets(const Aabb& bBox) const {
 }
 
 bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
-  if (!boxesMeet(box_, bBox, eps_)) return false;
-  const std::vector<Vec3>& bv = b.vertices;
-  {
-    const Vec3& n = b.plane.normal;
-    const double len = length(n);
-    if (len > 0 && separated(rangeOf(hull_, n, bv[0]), rangeOf(bv, n, bv[0]), eps_ * len))
-      return false;
-  }
+  return boxesMeet(box_, bBox, eps_) && meetsInBox(b);
+}
+
+bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n) const {
+  // The hull's side planes first: they are prepared, and most separations are found there.
   const size_t planes = c_.size();
   for (size_t i = 0; i < planes; ++i) {
     bool separates = true;  // every vertex of b at or beyond the plane (within eps)
@@ -99,7 +96,8 @@ bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
       }
     if (separates) return false;
   }
-  return true;
+  const double len = length(n);
+  return !(len > 0 && separated(rangeOf(hull_, n, bv[0]), rangeOf(bv, n, bv[0]), eps_ * len));
 }
 
 bool meetsConvexHull(const ConvexPolygon& b, const ConvexPolygon& s, const ConvexPolygon& r,

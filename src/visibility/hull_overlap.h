@@ -2,6 +2,7 @@
 // patch meeting conv(S, R) can stop a segment from S to R.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "geometry/convex_polygon.h"
@@ -26,6 +27,13 @@ class PairHull {
   /// The first, cheapest part of `meets`: false when b's box misses the hull's box (grown by the
   /// tolerance), and then `meets` is false too.
   bool boxMeets(const Aabb& bBox) const;
+  /// The rest of `meets`, for callers that know boxMeets(b's box) holds:
+  /// meets(b, box) == boxMeets(box) && meetsInBox(b).
+  bool meetsInBox(const ConvexPolygon& b) const { return meetsInBox(b.vertices, b.plane.normal); }
+  /// meetsInBox of the polygon with these vertices and plane normal.
+  bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal) const;
+  /// The hull's bounding box (not grown by the tolerance).
+  const Aabb& box() const { return box_; }
   /// Side planes kept (after removing repeats), for tests and statistics.
   size_t planeCount() const { return c_.size(); }
 

@@ -1,4 +1,4 @@
-// Uniform grid of patch boxes for the blocker candidates of paper §5 (see patch_grid.h).
+// Loose multi-level grid of patch boxes for the blocker candidates of paper §5 (patch_grid.h).
 #include "visibility/patch_grid.h"
 
 #include <algorithm>
@@ -11,113 +11,121 @@ namespace {
 /// scene is not cut into slivers along its thin axis).
 constexpr double kFlatAxisFraction = 1e-3;
 
-/// A patch whose box covers more grid cells than this is kept in one list that every query
-/// returns, so a few huge patches (a ground plane) cannot fill the grid with copies of themselves.
-constexpr size_t kMaxCellsPerPatch = 512;
-
-/// Cells per axis never exceed this (keeps indices in int and the grid small on odd inputs).
-constexpr int kMaxDim = 4096;
+/// Cells per axis at level 0 never exceed this (keeps indices in int and the grid small on odd
+/// inputs: one huge outlier box makes the level-0 cells coarser, never more numerous).
+constexpr int kMaxDim = 1024;
 
 }  // namespace
 
-PatchGrid::PatchGrid(const std::vector<Aabb>& boxes, double cellsPerPatch)
-    : patchCount_(boxes.size()) {
+PatchGrid::PatchGrid(const std::vector<Aabb>& boxes, double cellsPerPatch) {
   Aabb all;
   for (const Aabb& b : boxes)
     if (!b.empty()) all.add(b);
-  if (all.empty()) {
-    for (uint32_t p = 0; p < boxes.size(); ++p) ids_.push_back(p);
-    start_ = {0, 0, static_cast<uint32_t>(ids_.size())};  // cell 0 empty, the global list after
-    return;
+  Vec3 e{};
+  if (!all.empty()) {
+    origin_ = all.lo;
+    e = all.extent();
   }
-  origin_ = all.lo;
-  const Vec3 e = all.extent();
   const double ext[3] = {e.x, e.y, e.z};
   const double longest = std::max({ext[0], ext[1], ext[2]});
-  // Cell edge h with about cellsPerPatch * n cells over the axes that are not flat.
   const double target = std::max(1.0, cellsPerPatch * double(boxes.size()));
   double volume = 1;
   int axes = 0;
-  for (double x : ext)
-    if (x > kFlatAxisFraction * longest) volume *= x, ++axes;
-  const double h = axes > 0 ? std::pow(volume / target, 1.0 / axes) : 1.0;
   for (int a = 0; a < 3; ++a) {
-    const bool flat = !(ext[a] > kFlatAxisFraction * longest) || !(h > 0);
-    dims_[a] = flat ? 1 : std::clamp(static_cast<int>(std::ceil(ext[a] / h)), 1, kMaxDim);
-    inverseSize_[a] = ext[a] > 0 ? dims_[a] / ext[a] : 0;
+    flat_[a] = !(ext[a] > kFlatAxisFraction * longest);
+    if (!flat_[a]) volume *= ext[a], ++axes;
   }
-  const size_t cells = size_t(dims_[0]) * size_t(dims_[1]) * size_t(dims_[2]);
-  // Counting sort into buckets; the last bucket (index `cells`) is the global list.
-  std::vector<uint32_t> count(cells + 1, 0);
-  auto forCells = [&](const Aabb& b, auto f) {
-    int lo[3], hi[3];
-    cellRange(b.lo, b.hi, lo, hi);
-    const size_t covered =
-        size_t(hi[0] - lo[0] + 1) * size_t(hi[1] - lo[1] + 1) * size_t(hi[2] - lo[2] + 1);
-    if (covered > kMaxCellsPerPatch) {
-      f(cells);
-      return;
+  // Level 0: cell edge h with about `target` cells over the axes that are not flat.
+  double h = axes > 0 ? std::pow(volume / target, 1.0 / axes) : 1.0;
+  if (axes > 0) h = std::max(h, longest / kMaxDim);
+  if (!(h > 0)) h = 1.0;
+  for (;;) {
+    Level l;
+    l.cellSize = h;
+    bool single = true;
+    for (int a = 0; a < 3; ++a) {
+      l.dims[a] = flat_[a] ? 1 : std::max(1, static_cast<int>(std::ceil(ext[a] / h)));
+      single = single && l.dims[a] == 1;
     }
-    for (int z = lo[2]; z <= hi[2]; ++z)
-      for (int y = lo[1]; y <= hi[1]; ++y)
-        for (int x = lo[0]; x <= hi[0]; ++x) f((size_t(z) * dims_[1] + y) * dims_[0] + x);
-  };
-  for (const Aabb& b : boxes)
-    if (b.empty()) {
-      ++count[cells];
-    } else {
-      forCells(b, [&](size_t c) { ++count[c]; });
-    }
-  start_.assign(cells + 2, 0);
-  for (size_t c = 0; c <= cells; ++c) start_[c + 1] = start_[c] + count[c];
-  ids_.resize(start_.back());
-  std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
-  for (uint32_t p = 0; p < boxes.size(); ++p)
-    if (boxes[p].empty()) {
-      ids_[fill[cells]++] = p;
-    } else {
-      forCells(boxes[p], [&](size_t c) { ids_[fill[c]++] = p; });
-    }
+    levels_.push_back(l);
+    if (single) break;
+    h *= 2;
+  }
+  // Each patch once: the finest level whose cell is as large as its box, at its low corner.
+  std::vector<std::pair<uint32_t, size_t>> where;  // (level, cell) per stored patch
+  std::vector<uint32_t> stored;
+  for (uint32_t p = 0; p < boxes.size(); ++p) {
+    const Aabb& b = boxes[p];
+    if (b.empty()) continue;  // meets nothing
+    const Vec3 be = b.extent();
+    const double bext[3] = {be.x, be.y, be.z};
+    double size = 0;
+    for (int a = 0; a < 3; ++a)
+      if (!flat_[a]) size = std::max(size, bext[a]);
+    uint32_t level = 0;
+    while (level + 1 < levels_.size() && levels_[level].cellSize < size) ++level;
+    const Level& l = levels_[level];
+    const double lo[3] = {b.lo.x, b.lo.y, b.lo.z};
+    int c[3];
+    for (int a = 0; a < 3; ++a) c[a] = coordinate(l, a, lo[a]);
+    where.emplace_back(level, l.cell(c[0], c[1], c[2]));
+    stored.push_back(p);
+  }
+  // Counting sort into each level's buckets, levels one after another in ids_.
+  std::vector<size_t> levelBase(levels_.size() + 1, 0);
+  for (size_t k = 0; k < levels_.size(); ++k) {
+    const Level& l = levels_[k];
+    levelBase[k + 1] = levelBase[k] + size_t(l.dims[0]) * l.dims[1] * l.dims[2];
+  }
+  std::vector<uint32_t> count(levelBase.back() + 1, 0);
+  for (const auto& [level, cell] : where) ++count[levelBase[level] + cell + 1];
+  for (size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+  for (size_t k = 0; k < levels_.size(); ++k)
+    levels_[k].start.assign(count.begin() + levelBase[k], count.begin() + levelBase[k + 1] + 1);
+  ids_.resize(stored.size());
+  boxes_.resize(stored.size());
+  for (size_t i = 0; i < stored.size(); ++i) {
+    const uint32_t slot = count[levelBase[where[i].first] + where[i].second]++;
+    ids_[slot] = stored[i];
+    boxes_[slot] = boxes[stored[i]];
+  }
 }
 
-void PatchGrid::cellRange(const Vec3& a, const Vec3& b, int lo[3], int hi[3]) const {
-  const double pa[3] = {a.x - origin_.x, a.y - origin_.y, a.z - origin_.z};
-  const double pb[3] = {b.x - origin_.x, b.y - origin_.y, b.z - origin_.z};
-  for (int k = 0; k < 3; ++k) {
-    // Clamping keeps boxes beyond the grid (a query box grown by its slack) on the border cells.
-    auto cell = [&](double t) {
-      const double c = std::floor(t * inverseSize_[k]);
-      return static_cast<int>(std::clamp(c, 0.0, double(dims_[k] - 1)));
-    };
-    lo[k] = cell(pa[k]);
-    hi[k] = cell(pb[k]);
-  }
+int PatchGrid::coordinate(const Level& l, int axis, double t) const {
+  if (flat_[axis]) return 0;
+  const double o = axis == 0 ? origin_.x : axis == 1 ? origin_.y : origin_.z;
+  const double c = std::floor((t - o) / l.cellSize);
+  return static_cast<int>(std::clamp(c, 0.0, double(l.dims[axis] - 1)));
 }
 
-void PatchGrid::Query::gather(const Aabb& box, double slack, std::vector<uint32_t>& out) {
-  const PatchGrid& g = *grid_;
-  if (++stamp_ == 0) {  // wrapped: old stamps could collide
-    std::fill(stamps_.begin(), stamps_.end(), 0);
-    stamp_ = 1;
-  }
-  auto take = [&](size_t bucket) {
-    for (uint32_t i = g.start_[bucket]; i < g.start_[bucket + 1]; ++i) {
-      const uint32_t p = g.ids_[i];
-      if (stamps_[p] != stamp_) {
-        stamps_[p] = stamp_;
-        out.push_back(p);
+void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out) const {
+  if (box.empty()) return;
+  const Aabb& a = box;
+  const double e = slack;
+  const double lo[3] = {box.lo.x - slack, box.lo.y - slack, box.lo.z - slack};
+  const double hi[3] = {box.hi.x + slack, box.hi.y + slack, box.hi.z + slack};
+  for (const Level& l : levels_) {
+    // A box stored in cell i starts in it and is at most one cell long: it lies in cells i and
+    // i + 1. Two cells of margin below the query also cover rounding in the cell coordinates.
+    int first[3], last[3];
+    for (int k = 0; k < 3; ++k) {
+      first[k] = std::max(0, coordinate(l, k, lo[k]) - 2);
+      last[k] = coordinate(l, k, hi[k]);
+    }
+    for (int z = first[2]; z <= last[2]; ++z)
+      for (int y = first[1]; y <= last[1]; ++y) {
+        // Cells x = first..last of one row are consecutive buckets: one run of entries.
+        const uint32_t begin = l.start[l.cell(first[0], y, z)];
+        const uint32_t end = l.start[l.cell(last[0], y, z) + 1];
+        for (uint32_t i = begin; i < end; ++i) {
+          const Aabb& b = boxes_[i];
+          // PairHull's box test, the same comparisons in the same order.
+          if (a.lo.x <= b.hi.x + e && b.lo.x <= a.hi.x + e && a.lo.y <= b.hi.y + e &&
+              b.lo.y <= a.hi.y + e && a.lo.z <= b.hi.z + e && b.lo.z <= a.hi.z + e)
+            out.push_back(ids_[i]);
+        }
       }
-    }
-  };
-  const size_t cells = g.start_.size() - 2;
-  take(cells);  // the global list
-  if (box.empty() || cells == 0) return;
-  const Vec3 s{slack, slack, slack};
-  int lo[3], hi[3];
-  g.cellRange(box.lo - s, box.hi + s, lo, hi);
-  for (int z = lo[2]; z <= hi[2]; ++z)
-    for (int y = lo[1]; y <= hi[1]; ++y)
-      for (int x = lo[0]; x <= hi[0]; ++x) take((size_t(z) * g.dims_[1] + y) * g.dims_[0] + x);
+  }
 }
 
 }  // namespace gv

@@ -19,7 +19,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
+#include <cmath>
 #include <deque>
 #include <mutex>
 #include <optional>
@@ -378,6 +380,28 @@ class CellSearch {
   CellSearchResult result_;
 };
 
+/// Sorts distinct ids in [0, 64 bits.size()): by std::sort when there are few, else by setting
+/// their bits in `bits` (all clear on entry and on return) and reading them back in order, which
+/// is cheaper once the ids are more than a sparse sample of the range.
+void sortIds(std::vector<uint32_t>& ids, std::vector<uint64_t>& bits) {
+  if (ids.size() < 64 || double(ids.size()) * std::log2(double(ids.size())) < double(bits.size())) {
+    std::sort(ids.begin(), ids.end());
+    return;
+  }
+  uint32_t lo = UINT32_MAX, hi = 0;
+  for (uint32_t id : ids) {
+    bits[id >> 6] |= uint64_t{1} << (id & 63);
+    lo = std::min(lo, id);
+    hi = std::max(hi, id);
+  }
+  ids.clear();
+  for (size_t word = lo >> 6; word <= (hi >> 6); ++word) {
+    for (uint64_t b = bits[word]; b; b &= b - 1)
+      ids.push_back(static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b))));
+    bits[word] = 0;
+  }
+}
+
 /// Runs fn(worker, index) for index in [0, n) on at most `threads` oneTBB workers, each with its
 /// own state from makeWorker(); each index exactly once. Results land per index, so the output
 /// does not depend on the schedule.
@@ -594,10 +618,19 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   // Candidates come from a grid of patch boxes: only patches whose boxes meet conv(S, T)'s box
   // can meet conv(S, T), so the scan no longer walks all of seen(S) and seen(T) for every pair.
   const PatchGrid grid(patchBoxes);
+  // The candidates' vertices in one array, patch by patch: candidates are tested in id order, so
+  // the test walks this array forwards instead of chasing a vector per patch.
+  std::vector<uint32_t> vertexStart(n + 1, 0);
+  for (size_t p = 0; p < n; ++p)
+    vertexStart[p + 1] = vertexStart[p] + uint32_t(scene.patches[p].polygon.vertices.size());
+  std::vector<Vec3> vertices(vertexStart[n]);
+  for (size_t p = 0; p < n; ++p)
+    std::copy(scene.patches[p].polygon.vertices.begin(), scene.patches[p].polygon.vertices.end(),
+              vertices.begin() + vertexStart[p]);
   struct BlockerWorker {
-    PatchGrid::Query query;
     std::vector<uint8_t> seenFromS;  ///< per patch: in seen(S) of the current source
-    std::vector<uint32_t> candidates;
+    std::vector<uint32_t> candidates, blockers;
+    std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
   };
   std::vector<std::vector<Interaction>> perSource(n);
   std::atomic<size_t> sourcesDone{0};
@@ -606,7 +639,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   parallelFor(
       n, threads,
       [&] {
-        return BlockerWorker{PatchGrid::Query(grid), std::vector<uint8_t>(n, 0), {}};
+        return BlockerWorker{
+            std::vector<uint8_t>(n, 0), {}, {}, std::vector<uint64_t>((n + 63) / 64, 0)};
       },
       [&](BlockerWorker& w, size_t si) {
         if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
@@ -634,19 +668,25 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
             Aabb box = patchBoxes[s];
             box.add(patchBoxes[t]);
             w.candidates.clear();
-            // The slack is PairHull's box tolerance: the grid returns a superset of what meets.
-            w.query.gather(box, tol.length(), w.candidates);
+            // The slack is PairHull's box tolerance: the grid does PairHull's box test.
+            grid.gather(box, tol.length(), w.candidates);
             const auto& b = seen[t].seen;
+            w.blockers.clear();
+            sortIds(w.candidates, w.bits);  // blockers come out sorted
             for (uint32_t c : w.candidates) {
-              if (c == s || c == t || !hull.boxMeets(patchBoxes[c])) continue;
+              if (c == s || c == t) continue;
               if (!w.seenFromS[c] &&
                   !std::binary_search(
                       b.begin(), b.end(), std::make_pair(c, uint8_t{0}),
                       [](const auto& x, const auto& y) { return x.first < y.first; }))
                 continue;
-              if (hull.meets(scene.patches[c].polygon, patchBoxes[c])) in.blockers.push_back(c);
+              const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
+                                             vertices.data() + vertexStart[c + 1]);
+              if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal))
+                w.blockers.push_back(c);
             }
-            std::sort(in.blockers.begin(), in.blockers.end());
+            // Exactly sized: blocker lists are most of the memory on big scenes.
+            in.blockers.assign(w.blockers.begin(), w.blockers.end());
           }
           perSource[s].push_back(std::move(in));
         }
@@ -654,8 +694,13 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         ++sourcesDone;
       });
   if (options.blockerProgress) options.blockerProgress(n, n);
-  for (auto& v : perSource)
+  size_t interactions = 0;
+  for (const auto& v : perSource) interactions += v.size();
+  graph.interactions.reserve(interactions);
+  for (auto& v : perSource) {
     for (Interaction& in : v) graph.interactions.push_back(std::move(in));
+    std::vector<Interaction>().swap(v);
+  }
   uint64_t blockerSum = 0;
   for (const Interaction& in : graph.interactions) {
     if (in.blockers.empty()) {
