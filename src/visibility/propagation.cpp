@@ -28,6 +28,7 @@
 
 #include "quake/leaf_pvs.h"
 #include "util/timing.h"
+#include "visibility/facing_lines.h"
 #include "visibility/hull_overlap.h"
 #include "visibility/might_see.h"
 #include "visibility/patch_grid.h"
@@ -200,36 +201,21 @@ class PatchSearch {
     }
   }
 
-  /// The sequence (S's piece, T's piece) inside one convex cell, decided without the stabbing
-  /// kernel. A line crossing S along its normal, then T from front to back, exists iff some
-  /// point q of T lies in front of S's plane and some point p of S in front of T's plane: the
-  /// line p→q is one (its direction q − p has nS·(q − p) = dS(q) > 0 and nT·(q − p) = −dT(p) < 0),
-  /// and any such line meets S and T at points with those signs. Crossing T from back to front
-  /// needs a p behind T instead. Exact up to the length tolerance, below which the kernel's
-  /// grazing limit already gives no line.
+  /// The sequence (S's piece, T's piece) inside one convex cell, decided exactly by
+  /// facingLines (facing_lines.h) instead of the stabbing kernel.
   void testInSourceCell(const CellPatch& t) {
     const uint8_t have = flags_[t.patch];
     const bool wantFront = (t.facesIn || t.interior) && !(have & kSeenFront);
     const bool wantBack = (!t.facesIn || t.interior) && !(have & kSeen);
     if (!wantFront && !wantBack) return;
-    const double eps = tol_.length();
-    double tInFrontOfS = -INFINITY;
-    for (const Vec3& q : t.piece.vertices)
-      tInFrontOfS = std::max(tInFrontOfS, sourcePiece_->plane.distance(q));
-    double hi = -INFINITY, lo = INFINITY;
-    for (const Vec3& p : sourcePiece_->vertices) {
-      const double d = t.piece.plane.distance(p);
-      hi = std::max(hi, d);
-      lo = std::min(lo, d);
-    }
-    const bool leavesS = tInFrontOfS > eps;
+    const FacingLines lines = facingLines(*sourcePiece_, t.piece, tol_.length());
     if (wantFront) {
       ++facingRuleTests_;
-      if (leavesS && hi > eps) mark(t.patch, kSeen | kSeenFront);
+      if (lines.throughFront) mark(t.patch, kSeen | kSeenFront);
     }
     if (wantBack && !(flags_[t.patch] & kSeen)) {
       ++facingRuleTests_;
-      if (leavesS && lo < -eps) mark(t.patch, kSeen);
+      if (lines.throughBack) mark(t.patch, kSeen);
     }
   }
 
