@@ -12,6 +12,7 @@
 // the search saw it (stabbing is never "no" when a line exists).
 #include "visibility/propagation.h"
 
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -25,6 +26,7 @@
 #include <deque>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 
 #include "quake/leaf_pvs.h"
 #include "util/timing.h"
@@ -82,8 +84,22 @@ uint8_t attainable(const CellPatch& cp) {
   return (cp.facesIn || cp.interior) ? (kSeen | kSeenFront) : kSeen;
 }
 
+/// A seen patch and its flags packed in 32 bits (patch << 2 | flags): these lists are the patch
+/// searches' whole output, held for every source until the blocker stage, so their size counts.
+constexpr uint32_t seenEntry(uint32_t patch, uint8_t flags) {
+  return patch << 2 | flags;
+}
+constexpr uint32_t seenPatch(uint32_t entry) {
+  return entry >> 2;
+}
+constexpr uint8_t seenFlags(uint32_t entry) {
+  return static_cast<uint8_t>(entry & 3);
+}
+/// Patch ids must leave the two flag bits free.
+constexpr size_t kMaxPatches = size_t{1} << 30;
+
 struct PatchSearchResult {
-  std::vector<std::pair<uint32_t, uint8_t>> seen;  ///< (patch, flags), sorted by patch
+  std::vector<uint32_t> seen;                      ///< seenEntry(patch, flags), sorted by patch
   std::vector<uint32_t> sameCellVisible;           ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
   uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
@@ -165,7 +181,7 @@ class PatchSearch {
       visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
     }
     for (uint32_t t : touched_) {
-      result.seen.emplace_back(t, flags_[t]);
+      result.seen.push_back(seenEntry(t, flags_[t]));
       flags_[t] = 0;
     }
     touched_.clear();
@@ -432,6 +448,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                           : tbb::this_task_arena::max_concurrency();
   VisibilityGraph graph;
   VisibilityStats& st = graph.stats;
+  if (n >= kMaxPatches)
+    throw std::length_error(
+        fmt::format("visibility: {} patches, at most {} supported", n, kMaxPatches - 1));
   st.patches = n;
   st.cells = sub.cells.size();
   st.portals = sub.portals.size();
@@ -579,10 +598,13 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         }
       });
   StabbingStats stabbing;
+  uint64_t seenEntries = 0;
   for (const PatchSearchResult& r : seen) {
     stabbing += r.stabbing;
     st.patchFacingRuleTests += r.facingRuleTests;
+    seenEntries += r.seen.size();
   }
+  st.meanPatchesSeen = n ? double(seenEntries) / double(n) : 0;
   st.patchStabbingTests = stabbing.tests + st.patchFacingRuleTests;
   st.patchStabbing = stabbing;
   st.unresolvedStabbing = stabbing.unresolved + stabbing.lpNumericalFailures;
@@ -592,8 +614,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   const auto blockerStart = Clock::now();
   auto flagsOf = [&](uint32_t s, uint32_t t) -> uint8_t {
     const auto& v = seen[s].seen;
-    auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(t, uint8_t{0}));
-    return (it != v.end() && it->first == t) ? it->second : 0;
+    auto it = std::lower_bound(v.begin(), v.end(), seenEntry(t, 0));
+    return (it != v.end() && seenPatch(*it) == t) ? seenFlags(*it) : 0;
   };
   auto isSameCellVisible = [&](uint32_t s, uint32_t t) {
     const auto& v = seen[s].sameCellVisible;
@@ -640,8 +662,10 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         }
         const auto s = static_cast<uint32_t>(si);
         const ConvexPolygon& sp = scene.patches[s].polygon;
-        for (const auto& [t, f] : seen[s].seen) w.seenFromS[t] = 1;
-        for (const auto& [t, f] : seen[s].seen) {
+        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
+        for (uint32_t e : seen[s].seen) {
+          const uint32_t t = seenPatch(e);
+          const uint8_t f = seenFlags(e);
           if (t <= s) continue;
           // Both searches are conservative and a sightline runs both ways, so a real pair is seen
           // front to front from each end: requiring both is exact pruning, not a guess.
@@ -657,15 +681,15 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
             // The slack is PairHull's box tolerance: the grid does PairHull's box test.
             grid.gather(box, tol.length(), w.candidates);
             const auto& b = seen[t].seen;
+            auto fromT = b.begin();  // candidates rise: each search starts where the last ended
             w.blockers.clear();
             sortIds(w.candidates, w.bits);  // blockers come out sorted
             for (uint32_t c : w.candidates) {
               if (c == s || c == t) continue;
-              if (!w.seenFromS[c] &&
-                  !std::binary_search(
-                      b.begin(), b.end(), std::make_pair(c, uint8_t{0}),
-                      [](const auto& x, const auto& y) { return x.first < y.first; }))
-                continue;
+              if (!w.seenFromS[c]) {
+                fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
+                if (fromT == b.end() || seenPatch(*fromT) != c) continue;
+              }
               const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
                                              vertices.data() + vertexStart[c + 1]);
               if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal))
@@ -676,7 +700,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           }
           perSource[s].push_back(std::move(in));
         }
-        for (const auto& [t, f] : seen[s].seen) w.seenFromS[t] = 0;
+        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
         ++sourcesDone;
       });
   if (options.blockerProgress) options.blockerProgress(n, n);

@@ -78,6 +78,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"cell_stabbing_tests", s.cellStabbingTests},
       {"patch_stabbing_tests", s.patchStabbingTests},
       {"patch_facing_rule_tests", s.patchFacingRuleTests},
+      {"mean_patches_seen_per_patch", s.meanPatchesSeen},
       {"unresolved_stabbing_tests", s.unresolvedStabbing},
       {"stabbing",
        {{"cell_level", stabbingJson(s.cellStabbing)},
