@@ -22,11 +22,6 @@ Range rangeOf(std::span<const Vec3> points, const Vec3& n, const Vec3& o) {
   return r;
 }
 
-/// With the hull's range h and the polygon's q on one plane: does it separate them, up to e?
-bool separated(const Range& h, const Range& q, double e) {
-  return (h.hi <= e && q.lo >= -e) || (h.lo >= -e && q.hi <= e);
-}
-
 /// Unit normals closer than this in every coordinate (and offsets within the length tolerance)
 /// are one plane: rounding in the cross products of nearby vertices is ~1e-15 of the scene.
 constexpr double kRepeatedNormal = 1e-9;
@@ -96,8 +91,20 @@ bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n) const {
       }
     if (separates) return false;
   }
+  // b's own plane: separated when the hull lies on one side of it (within e) and b on it.
   const double len = length(n);
-  return !(len > 0 && separated(rangeOf(hull_, n, bv[0]), rangeOf(bv, n, bv[0]), eps_ * len));
+  if (!(len > 0)) return true;
+  const double e = eps_ * len;
+  const Range q = rangeOf(bv, n, bv[0]);
+  bool behind = q.lo >= -e;  // still possible: hull at or behind (h.hi <= e), b at or in front
+  bool ahead = q.hi <= e;    // still possible: hull at or ahead (h.lo >= -e), b at or behind
+  for (const Vec3& h : hull_) {
+    if (!behind && !ahead) return true;  // the hull straddles b's plane
+    const double d = dot(n, h - bv[0]);
+    if (d > e) behind = false;
+    if (d < -e) ahead = false;
+  }
+  return !behind && !ahead;
 }
 
 bool meetsConvexHull(const ConvexPolygon& b, const ConvexPolygon& s, const ConvexPolygon& r,
