@@ -15,6 +15,9 @@ constexpr double kFlatAxisFraction = 1e-3;
 /// inputs: one huge outlier box makes the level-0 cells coarser, never more numerous).
 constexpr int kMaxDim = 1024;
 
+/// Relative margin on the query's low side for rounding in (t − origin) / cellSize.
+constexpr double kCellRounding = 1e-9;
+
 }  // namespace
 
 PatchGrid::PatchGrid(const std::vector<Aabb>& boxes, double cellsPerPatch) {
@@ -105,11 +108,13 @@ void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out
   const double lo[3] = {box.lo.x - slack, box.lo.y - slack, box.lo.z - slack};
   const double hi[3] = {box.hi.x + slack, box.hi.y + slack, box.hi.z + slack};
   for (const Level& l : levels_) {
+    if (l.start.front() == l.start.back()) continue;  // no patch at this level
     // A box stored in cell i starts in it and is at most one cell long: it lies in cells i and
-    // i + 1. Two cells of margin below the query also cover rounding in the cell coordinates.
+    // i + 1, so the cells from the one holding lo − (a cell) are enough; the extra 1e-9 of a
+    // cell covers rounding in the cell coordinates (floor is monotone, so `last` needs none).
     int first[3], last[3];
     for (int k = 0; k < 3; ++k) {
-      first[k] = std::max(0, coordinate(l, k, lo[k]) - 2);
+      first[k] = coordinate(l, k, lo[k] - l.cellSize * (1 + kCellRounding));
       last[k] = coordinate(l, k, hi[k]);
     }
     for (int z = first[2]; z <= last[2]; ++z)
