@@ -12,7 +12,7 @@ namespace {
 struct Range {
   double lo = INFINITY, hi = -INFINITY;
 };
-Range rangeOf(const std::vector<Vec3>& points, const Vec3& n, const Vec3& o) {
+Range rangeOf(std::span<const Vec3> points, const Vec3& n, const Vec3& o) {
   Range r;
   for (const Vec3& p : points) {
     const double d = dot(n, p - o);
@@ -22,10 +22,9 @@ Range rangeOf(const std::vector<Vec3>& points, const Vec3& n, const Vec3& o) {
   return r;
 }
 
-/// With the hull's range h and the polygon's q on one plane: does it separate them, up to e?
-bool separated(const Range& h, const Range& q, double e) {
-  return (h.hi <= e && q.lo >= -e) || (h.lo >= -e && q.hi <= e);
-}
+/// Unit normals closer than this in every coordinate (and offsets within the length tolerance)
+/// are one plane: rounding in the cross products of nearby vertices is ~1e-15 of the scene.
+constexpr double kRepeatedNormal = 1e-9;
 
 bool boxesMeet(const Aabb& a, const Aabb& b, double eps) {
   return a.lo.x <= b.hi.x + eps && b.lo.x <= a.hi.x + eps && a.lo.y <= b.hi.y + eps &&
@@ -40,12 +39,24 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
   box_.add(r.bounds());
   hull_ = s.vertices;
   hull_.insert(hull_.end(), r.vertices.begin(), r.vertices.end());
+  auto add = [&](const Vec3& n, double c) {
+    for (size_t i = 0; i < c_.size(); ++i)
+      if (std::abs(nx_[i] - n.x) <= kRepeatedNormal && std::abs(ny_[i] - n.y) <= kRepeatedNormal &&
+          std::abs(nz_[i] - n.z) <= kRepeatedNormal && std::abs(c_[i] - c) <= eps_)
+        return;
+    nx_.push_back(n.x);
+    ny_.push_back(n.y);
+    nz_.push_back(n.z);
+    c_.push_back(c);
+  };
   auto consider = [&](const Vec3& n, const Vec3& o) {
     const double len = length(n);
-    if (len == 0) return;
-    const double e = eps_ * len;
-    const Range h = rangeOf(hull_, n, o);
-    if (h.hi <= e || h.lo >= -e) planes_.push_back({n, o, h.lo, h.hi, e});
+    if (!(len > 0)) return;
+    const Vec3 u = n * (1 / len);
+    const Range h = rangeOf(hull_, u, o);
+    const double c = dot(u, o);
+    if (h.hi <= eps_) add(u, c);     // hull behind: separates what lies in front
+    if (h.lo >= -eps_) add(-u, -c);  // hull in front: separates what lies behind
   };
   consider(s.plane.normal, s.vertices[0]);
   consider(r.plane.normal, r.vertices[0]);
@@ -60,18 +71,40 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
   }
 }
 
+bool PairHull::boxMeets(const Aabb& bBox) const {
+  return boxesMeet(box_, bBox, eps_);
+}
+
 bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
-  if (!boxesMeet(box_, bBox, eps_)) return false;
-  const std::vector<Vec3>& bv = b.vertices;
-  {
-    const Vec3& n = b.plane.normal;
-    const double len = length(n);
-    if (len > 0 && separated(rangeOf(hull_, n, bv[0]), rangeOf(bv, n, bv[0]), eps_ * len))
-      return false;
+  return boxesMeet(box_, bBox, eps_) && meetsInBox(b);
+}
+
+bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n) const {
+  // The hull's side planes first: they are prepared, and most separations are found there.
+  const size_t planes = c_.size();
+  for (size_t i = 0; i < planes; ++i) {
+    bool separates = true;  // every vertex of b at or beyond the plane (within eps)
+    for (const Vec3& v : bv)
+      if (nx_[i] * v.x + ny_[i] * v.y + nz_[i] * v.z - c_[i] < -eps_) {
+        separates = false;
+        break;
+      }
+    if (separates) return false;
   }
-  for (const SidePlane& p : planes_)
-    if (separated({p.lo, p.hi}, rangeOf(bv, p.n, p.o), p.eps)) return false;
-  return true;
+  // b's own plane: separated when the hull lies on one side of it (within e) and b on it.
+  const double len = length(n);
+  if (!(len > 0)) return true;
+  const double e = eps_ * len;
+  const Range q = rangeOf(bv, n, bv[0]);
+  bool behind = q.lo >= -e;  // still possible: hull at or behind (h.hi <= e), b at or in front
+  bool ahead = q.hi <= e;    // still possible: hull at or ahead (h.lo >= -e), b at or behind
+  for (const Vec3& h : hull_) {
+    if (!behind && !ahead) return true;  // the hull straddles b's plane
+    const double d = dot(n, h - bv[0]);
+    if (d > e) behind = false;
+    if (d < -e) ahead = false;
+  }
+  return !behind && !ahead;
 }
 
 bool meetsConvexHull(const ConvexPolygon& b, const ConvexPolygon& s, const ConvexPolygon& r,

@@ -2,6 +2,7 @@
 // patch meeting conv(S, R) can stop a segment from S to R.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "geometry/convex_polygon.h"
@@ -15,23 +16,33 @@ namespace gv {
 /// tol.length() counts as separated: it blocks no segment of positive measure). Candidate planes:
 /// the planes of s, r and b, and the hull's side planes through an edge of one polygon and a
 /// vertex of the other. Conservative: a polygon these planes cannot separate is reported as
-/// meeting.
+/// meeting. Side planes that repeat one another (parallel boxes give each hull face up to four
+/// times) are kept once: dropping a plane can only turn "separated" into "meets".
 class PairHull {
  public:
   PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Tolerance& tol);
   /// `bBox` is b's bounding box (callers testing many pairs keep them).
   bool meets(const ConvexPolygon& b, const Aabb& bBox) const;
   bool meets(const ConvexPolygon& b) const { return meets(b, b.bounds()); }
+  /// The first, cheapest part of `meets`: false when b's box misses the hull's box (grown by the
+  /// tolerance), and then `meets` is false too.
+  bool boxMeets(const Aabb& bBox) const;
+  /// The rest of `meets`, for callers that know boxMeets(b's box) holds:
+  /// meets(b, box) == boxMeets(box) && meetsInBox(b).
+  bool meetsInBox(const ConvexPolygon& b) const { return meetsInBox(b.vertices, b.plane.normal); }
+  /// meetsInBox of the polygon with these vertices and plane normal.
+  bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal) const;
+  /// The hull's bounding box (not grown by the tolerance).
+  const Aabb& box() const { return box_; }
+  /// Side planes kept (after removing repeats), for tests and statistics.
+  size_t planeCount() const { return c_.size(); }
 
  private:
-  /// A plane n·(x − o) with the hull's range of values on it, kept only if the hull lies on one
-  /// side (otherwise it can separate nothing).
-  struct SidePlane {
-    Vec3 n, o;
-    double lo, hi, eps;  // hull range; tolerance in units of |n|
-  };
+  /// Side planes, unit normal n and offset c, oriented so that the hull lies in n·x − c <= eps:
+  /// a polygon with every vertex at n·x − c >= −eps is separated. Structure of arrays so that
+  /// the loop over planes runs over contiguous doubles.
+  std::vector<double> nx_, ny_, nz_, c_;
   std::vector<Vec3> hull_;
-  std::vector<SidePlane> planes_;
   Aabb box_;
   double eps_;
 };

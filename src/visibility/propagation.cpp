@@ -11,23 +11,29 @@
 // the portals that segment crossed, and the segment crosses that patch after those portals, so
 // the search saw it (stabbing is never "no" when a line exists).
 #include "visibility/propagation.h"
-#include "util/timing.h"
 
-#include <algorithm>
-#include <atomic>
-#include <chrono>
-#include <deque>
-#include <mutex>
-#include <optional>
-
+#include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "visibility/hull_overlap.h"
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+
 #include "quake/leaf_pvs.h"
+#include "util/timing.h"
+#include "visibility/facing_lines.h"
+#include "visibility/hull_overlap.h"
 #include "visibility/might_see.h"
+#include "visibility/patch_grid.h"
 
 namespace gv {
 namespace {
@@ -78,10 +84,25 @@ uint8_t attainable(const CellPatch& cp) {
   return (cp.facesIn || cp.interior) ? (kSeen | kSeenFront) : kSeen;
 }
 
+/// A seen patch and its flags packed in 32 bits (patch << 2 | flags): these lists are the patch
+/// searches' whole output, held for every source until the blocker stage, so their size counts.
+constexpr uint32_t seenEntry(uint32_t patch, uint8_t flags) {
+  return patch << 2 | flags;
+}
+constexpr uint32_t seenPatch(uint32_t entry) {
+  return entry >> 2;
+}
+constexpr uint8_t seenFlags(uint32_t entry) {
+  return static_cast<uint8_t>(entry & 3);
+}
+/// Patch ids must leave the two flag bits free.
+constexpr size_t kMaxPatches = size_t{1} << 30;
+
 struct PatchSearchResult {
-  std::vector<std::pair<uint32_t, uint8_t>> seen;  ///< (patch, flags), sorted by patch
+  std::vector<uint32_t> seen;                      ///< seenEntry(patch, flags), sorted by patch
   std::vector<uint32_t> sameCellVisible;           ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
+  uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
 };
 
 using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
@@ -120,10 +141,17 @@ class PatchSearch {
   PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
               const Placements& placements, const PortalReach& might,
               const std::vector<CellSet>& cellReach, const Tolerance& tol)
-      : sub_(sub), cellPatches_(cellPatches), placements_(placements), might_(might),
+      : sub_(sub),
+        cellPatches_(cellPatches),
+        placements_(placements),
+        might_(might),
         cellReach_(cellReach),
-        stabber_(tol), flags_(placements.size(), 0), onPath_(sub.cells.size(), 0),
-        unsaturatedCount_(sub.cells.size(), 0), unsaturated_(sub.cells.size()) {
+        stabber_(tol),
+        flags_(placements.size(), 0),
+        onPath_(sub.cells.size(), 0),
+        unsaturatedCount_(sub.cells.size(), 0),
+        unsaturated_(sub.cells.size()),
+        tol_(tol) {
     for (uint32_t c = 0; c < sub.cells.size(); ++c) {
       baseCount_.push_back(static_cast<uint32_t>(cellPatches[c].size()));
       if (!cellPatches[c].empty()) unsaturated_.insert(c);
@@ -134,6 +162,7 @@ class PatchSearch {
   PatchSearchResult run(uint32_t s) {
     PatchSearchResult result;
     stabber_.resetStats();
+    facingRuleTests_ = 0;
     source_ = s;
     // The source's own pieces are never targets: they count as saturated.
     for (auto [cell, k] : placements_[s]) decrement(cell);
@@ -142,6 +171,7 @@ class PatchSearch {
       if (!cp.facesIn && !cp.interior) continue;  // S's front does not look into this cell
       stabber_.clear();
       if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
+      sourcePiece_ = &cp.piece;
       const bool cellEmpty = sub_.cells[cell].interiorPatches.empty();
       if (cp.whole && cellEmpty) {
         for (const CellPatch& t : cellPatches_[cell])
@@ -151,7 +181,7 @@ class PatchSearch {
       visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
     }
     for (uint32_t t : touched_) {
-      result.seen.emplace_back(t, flags_[t]);
+      result.seen.push_back(seenEntry(t, flags_[t]));
       flags_[t] = 0;
     }
     touched_.clear();
@@ -165,6 +195,7 @@ class PatchSearch {
     result.sameCellVisible.erase(std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
                                  result.sameCellVisible.end());
     result.stabbing = stabber_.stats();
+    result.facingRuleTests = facingRuleTests_;
     return result;
   }
 
@@ -186,9 +217,31 @@ class PatchSearch {
     }
   }
 
+  /// The sequence (S's piece, T's piece) inside one convex cell, decided exactly by
+  /// facingLines (facing_lines.h) instead of the stabbing kernel.
+  void testInSourceCell(const CellPatch& t) {
+    const uint8_t have = flags_[t.patch];
+    const bool wantFront = (t.facesIn || t.interior) && !(have & kSeenFront);
+    const bool wantBack = (!t.facesIn || t.interior) && !(have & kSeen);
+    if (!wantFront && !wantBack) return;
+    const FacingLines lines = facingLines(*sourcePiece_, t.piece, tol_.length());
+    if (wantFront) {
+      ++facingRuleTests_;
+      if (lines.throughFront) mark(t.patch, kSeen | kSeenFront);
+    }
+    if (wantBack && !(flags_[t.patch] & kSeen)) {
+      ++facingRuleTests_;
+      if (lines.throughBack) mark(t.patch, kSeen);
+    }
+  }
+
   /// Tests T crossed the way a sightline arriving from inside the cell crosses it.
   void testTarget(const CellPatch& t) {
     if (t.patch == source_) return;
+    if (stabber_.depth() == 1) {
+      testInSourceCell(t);
+      return;
+    }
     const uint8_t have = flags_[t.patch];
     // Front hit: the line crosses T from its front to its back (loop reversed = travel normal).
     if ((t.facesIn || t.interior) && !(have & kSeenFront)) {
@@ -248,6 +301,9 @@ class PatchSearch {
   std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
   std::vector<Vec3> scratch_;
   uint32_t source_ = 0;
+  const ConvexPolygon* sourcePiece_ = nullptr;  // S's piece that starts the current sequence
+  uint64_t facingRuleTests_ = 0;
+  Tolerance tol_;
 };
 
 /// Cell-to-cell search from one source cell: counts and the Fig. 13 histogram.
@@ -326,6 +382,28 @@ class CellSearch {
   CellSearchResult result_;
 };
 
+/// Sorts distinct ids in [0, 64 bits.size()): by std::sort when there are few, else by setting
+/// their bits in `bits` (all clear on entry and on return) and reading them back in order, which
+/// is cheaper once the ids are more than a sparse sample of the range.
+void sortIds(std::vector<uint32_t>& ids, std::vector<uint64_t>& bits) {
+  if (ids.size() < 64 || double(ids.size()) * std::log2(double(ids.size())) < double(bits.size())) {
+    std::sort(ids.begin(), ids.end());
+    return;
+  }
+  uint32_t lo = UINT32_MAX, hi = 0;
+  for (uint32_t id : ids) {
+    bits[id >> 6] |= uint64_t{1} << (id & 63);
+    lo = std::min(lo, id);
+    hi = std::max(hi, id);
+  }
+  ids.clear();
+  for (size_t word = lo >> 6; word <= (hi >> 6); ++word) {
+    for (uint64_t b = bits[word]; b; b &= b - 1)
+      ids.push_back(static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b))));
+    bits[word] = 0;
+  }
+}
+
 /// Runs fn(worker, index) for index in [0, n) on at most `threads` oneTBB workers, each with its
 /// own state from makeWorker(); each index exactly once. Results land per index, so the output
 /// does not depend on the schedule.
@@ -370,6 +448,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                           : tbb::this_task_arena::max_concurrency();
   VisibilityGraph graph;
   VisibilityStats& st = graph.stats;
+  if (n >= kMaxPatches)
+    throw std::length_error(
+        fmt::format("visibility: {} patches, at most {} supported", n, kMaxPatches - 1));
   st.patches = n;
   st.cells = sub.cells.size();
   st.portals = sub.portals.size();
@@ -517,8 +598,14 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         }
       });
   StabbingStats stabbing;
-  for (const PatchSearchResult& r : seen) stabbing += r.stabbing;
-  st.patchStabbingTests = stabbing.tests;
+  uint64_t seenEntries = 0;
+  for (const PatchSearchResult& r : seen) {
+    stabbing += r.stabbing;
+    st.patchFacingRuleTests += r.facingRuleTests;
+    seenEntries += r.seen.size();
+  }
+  st.meanPatchesSeen = n ? double(seenEntries) / double(n) : 0;
+  st.patchStabbingTests = stabbing.tests + st.patchFacingRuleTests;
   st.patchStabbing = stabbing;
   st.unresolvedStabbing = stabbing.unresolved + stabbing.lpNumericalFailures;
   st.patchSeconds = secondsSince(patchStart);
@@ -527,8 +614,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   const auto blockerStart = Clock::now();
   auto flagsOf = [&](uint32_t s, uint32_t t) -> uint8_t {
     const auto& v = seen[s].seen;
-    auto it = std::lower_bound(v.begin(), v.end(), std::make_pair(t, uint8_t{0}));
-    return (it != v.end() && it->first == t) ? it->second : 0;
+    auto it = std::lower_bound(v.begin(), v.end(), seenEntry(t, 0));
+    return (it != v.end() && seenPatch(*it) == t) ? seenFlags(*it) : 0;
   };
   auto isSameCellVisible = [&](uint32_t s, uint32_t t) {
     const auto& v = seen[s].sameCellVisible;
@@ -536,13 +623,34 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   };
   std::vector<Aabb> patchBoxes(n);
   for (size_t p = 0; p < n; ++p) patchBoxes[p] = scene.patches[p].polygon.bounds();
+  // Candidates come from a grid of patch boxes: only patches whose boxes meet conv(S, T)'s box
+  // can meet conv(S, T), so the scan no longer walks all of seen(S) and seen(T) for every pair.
+  const PatchGrid grid(patchBoxes);
+  // The candidates' vertices in one array, patch by patch: candidates are tested in id order, so
+  // the test walks this array forwards instead of chasing a vector per patch.
+  std::vector<uint32_t> vertexStart(n + 1, 0);
+  for (size_t p = 0; p < n; ++p)
+    vertexStart[p + 1] = vertexStart[p] + uint32_t(scene.patches[p].polygon.vertices.size());
+  std::vector<Vec3> vertices(vertexStart[n]);
+  for (size_t p = 0; p < n; ++p)
+    std::copy(scene.patches[p].polygon.vertices.begin(), scene.patches[p].polygon.vertices.end(),
+              vertices.begin() + vertexStart[p]);
+  struct BlockerWorker {
+    std::vector<uint8_t> seenFromS;  ///< per patch: in seen(S) of the current source
+    std::vector<uint32_t> candidates, blockers;
+    std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
+  };
   std::vector<std::vector<Interaction>> perSource(n);
   std::atomic<size_t> sourcesDone{0};
   std::mutex blockerProgressMutex;
   size_t sourcesReported = 0;
   parallelFor(
-      n, threads, [] { return 0; },
-      [&](int&, size_t si) {
+      n, threads,
+      [&] {
+        return BlockerWorker{
+            std::vector<uint8_t>(n, 0), {}, {}, std::vector<uint64_t>((n + 63) / 64, 0)};
+      },
+      [&](BlockerWorker& w, size_t si) {
         if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
           throw PropagationDeadlineExceeded();
         if (options.blockerProgress) {
@@ -554,7 +662,10 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         }
         const auto s = static_cast<uint32_t>(si);
         const ConvexPolygon& sp = scene.patches[s].polygon;
-        for (const auto& [t, f] : seen[s].seen) {
+        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
+        for (uint32_t e : seen[s].seen) {
+          const uint32_t t = seenPatch(e);
+          const uint8_t f = seenFlags(e);
           if (t <= s) continue;
           // Both searches are conservative and a sightline runs both ways, so a real pair is seen
           // front to front from each end: requiring both is exact pruning, not a guess.
@@ -564,30 +675,42 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           Interaction in{s, t, {}};
           if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
             const PairHull hull(sp, tp, tol);
-            const auto& a = seen[s].seen;
+            Aabb box = patchBoxes[s];
+            box.add(patchBoxes[t]);
+            w.candidates.clear();
+            // The slack is PairHull's box tolerance: the grid does PairHull's box test.
+            grid.gather(box, tol.length(), w.candidates);
             const auto& b = seen[t].seen;
-            // Both lists are sorted by patch: merge them, each candidate once and in order.
-            for (size_t i = 0, j = 0; i < a.size() || j < b.size();) {
-              uint32_t c;
-              if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) {
-                c = a[i++].first;
-              } else if (i == a.size() || b[j].first < a[i].first) {
-                c = b[j++].first;
-              } else {
-                c = a[i].first;
-                ++i, ++j;
+            auto fromT = b.begin();  // candidates rise: each search starts where the last ended
+            w.blockers.clear();
+            sortIds(w.candidates, w.bits);  // blockers come out sorted
+            for (uint32_t c : w.candidates) {
+              if (c == s || c == t) continue;
+              if (!w.seenFromS[c]) {
+                fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
+                if (fromT == b.end() || seenPatch(*fromT) != c) continue;
               }
-              if (c != s && c != t && hull.meets(scene.patches[c].polygon, patchBoxes[c]))
-                in.blockers.push_back(c);
+              const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
+                                             vertices.data() + vertexStart[c + 1]);
+              if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal))
+                w.blockers.push_back(c);
             }
+            // Exactly sized: blocker lists are most of the memory on big scenes.
+            in.blockers.assign(w.blockers.begin(), w.blockers.end());
           }
           perSource[s].push_back(std::move(in));
         }
+        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
         ++sourcesDone;
       });
   if (options.blockerProgress) options.blockerProgress(n, n);
-  for (auto& v : perSource)
+  size_t interactions = 0;
+  for (const auto& v : perSource) interactions += v.size();
+  graph.interactions.reserve(interactions);
+  for (auto& v : perSource) {
     for (Interaction& in : v) graph.interactions.push_back(std::move(in));
+    std::vector<Interaction>().swap(v);
+  }
   uint64_t blockerSum = 0;
   for (const Interaction& in : graph.interactions) {
     if (in.blockers.empty()) {

@@ -52,6 +52,53 @@ Vec3 cosineDirection(const Vec3& n, std::mt19937_64& rng) {
   return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r * r));
 }
 
+/// Does origin + t·d cross `poly` in double precision, at a t in [tMin, tMax]? (A crossing point
+/// on the polygon's boundary within `eps` counts as crossing.)
+bool crossesInDouble(const ConvexPolygon& poly, const Vec3& origin, const Vec3& d, double tMin,
+                     double tMax, double eps) {
+  const Vec3& n = poly.plane.normal;
+  const double den = dot(n, d);
+  if (std::abs(den) <= 1e-12 * length(n) * length(d)) return false;  // in the plane: no crossing
+  const double t = -poly.plane.distance(origin) / den;
+  if (!(t >= tMin && t <= tMax)) return false;
+  const Vec3 x = origin + d * t;
+  const auto& v = poly.vertices;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec3 e = v[(i + 1) % v.size()] - v[i];
+    if (dot(cross(e, x - v[i]), n) < -eps * length(e) * length(n)) return false;
+  }
+  return true;
+}
+
+/// The first patch met by origin + t·d, t in (0, tMax], other than `ignoreA` and `ignoreB`, with
+/// Embree's single-precision answers confirmed in double precision: a hit whose patch the ray
+/// does not cross in double, or crosses within `contact` of either end (where a start point on
+/// an edge shared with another patch leaves float rounding to decide), is skipped and the ray
+/// cast again past it. After a few skips the hit is taken as it is (verification stays strict).
+std::optional<RayHit> confirmedFirstHit(const EmbreeScene& rays, const Scene& scene,
+                                        const Vec3& origin, const Vec3& d, double tMax,
+                                        uint32_t ignoreA, uint32_t ignoreB, double contact,
+                                        double eps) {
+  constexpr int kMaxSkips = 8;
+  const double len = length(d);
+  const double tContact = len > 0 ? contact / len : 0;
+  double base = 0;  // parameter of the current cast's origin
+  uint32_t ignore = ignoreA;
+  for (int k = 0;; ++k) {
+    const Vec3 o = origin + d * base;
+    const auto hit = rays.firstHit(o, d, tMax - base, ignore);
+    if (!hit) return std::nullopt;
+    const double t = base + hit->t;
+    const bool own = hit->patch == ignoreA || hit->patch == ignoreB;
+    if (!own && (k == kMaxSkips || crossesInDouble(scene.patches[hit->patch].polygon, origin, d,
+                                                   tContact, tMax - tContact, eps)))
+      return RayHit{hit->patch, t};
+    if (k == kMaxSkips) return std::nullopt;  // only the pair's own patches, in contact
+    base = t;
+    ignore = hit->patch;
+  }
+}
+
 }  // namespace
 
 VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
@@ -82,7 +129,8 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
     ++report.rays;
     // Start just in front of S: a patch overlapping S in its own plane (a box resting on a floor)
     // meets the ray at distance 0, which is contact, not sight.
-    const auto hit = rays.firstHit(o + sp.normal() * offset, d, INFINITY, s);
+    const auto hit =
+        confirmedFirstHit(rays, scene, o + sp.normal() * offset, d, INFINITY, s, s, offset, eps);
     if (!hit || dot(d, scene.patches[hit->patch].polygon.normal()) >= 0) continue;
     ++report.raysHittingFront;
     const uint32_t a = std::min(s, hit->patch), b = std::max(s, hit->patch);
@@ -106,6 +154,8 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
     ++report.segments;
     const Vec3 p1 = p + sp.normal() * offset, q1 = q + rp.normal() * offset;
     if (!rays.occluded(p1, q1, in.s, in.r)) continue;
+    // Embree's "occluded" confirmed in double: some patch other than S and R really crossed.
+    if (!confirmedFirstHit(rays, scene, p1, q1 - p1, 1.0, in.s, in.r, offset, eps)) continue;
     ++report.blockedSegments;
     if (in.blockers.empty()) {
       if (report.examples.size() < kVerifyExamples)
@@ -116,9 +166,9 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
       continue;
     }
     for (const auto& [from, to, self] : {std::tuple{p1, q1, in.s}, std::tuple{q1, p1, in.r}}) {
-      const auto hit = rays.firstHit(from, to - from, 1.0, self);
-      if (hit && hit->patch != in.s && hit->patch != in.r &&
-          !std::binary_search(in.blockers.begin(), in.blockers.end(), hit->patch)) {
+      const auto hit =
+          confirmedFirstHit(rays, scene, from, to - from, 1.0, in.s, in.r, offset, eps);
+      if (hit && !std::binary_search(in.blockers.begin(), in.blockers.end(), hit->patch)) {
         if (report.examples.size() < kVerifyExamples)
           report.examples.push_back(fmt::format("patch {} is met first on segment ({}, {}, {}) to "
                                                 "({}, {}, {}) of pair ({}, {}) but is not a blocker",

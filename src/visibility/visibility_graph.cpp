@@ -17,11 +17,28 @@ void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path) {
     auto out = fmt::output_file(path);
     out.print("# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");
     out.print("# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n");
+    // Numbers formatted by hand into one buffer written in large blocks: the file has tens of
+    // millions of ids on big scenes, and a format-string parse per id dominated the writing.
+    std::string buffer;
+    constexpr size_t kFlushBytes = size_t{1} << 20;
+    buffer.reserve(kFlushBytes + 64);
+    auto put = [&](uint64_t v, char after) {
+      const fmt::format_int digits(v);
+      buffer.append(digits.data(), digits.size());
+      buffer.push_back(after);
+      if (buffer.size() >= kFlushBytes) {
+        out.print("{}", buffer);
+        buffer.clear();
+      }
+    };
     for (const Interaction& in : graph.interactions) {
-      out.print("{} {} {}", in.s, in.r, in.blockers.size());
-      for (uint32_t b : in.blockers) out.print(" {}", b);
-      out.print("\n");
+      put(in.s, ' ');
+      put(in.r, ' ');
+      put(in.blockers.size(), in.blockers.empty() ? '\n' : ' ');
+      for (size_t k = 0; k < in.blockers.size(); ++k)
+        put(in.blockers[k], k + 1 == in.blockers.size() ? '\n' : ' ');
     }
+    out.print("{}", buffer);
   } catch (const std::system_error& e) {
     throw InputError(path, 0, std::string("cannot write: ") + e.what());
   }
@@ -60,22 +77,34 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"cell_pairs_visible", s.cellPairsVisible},
       {"cell_stabbing_tests", s.cellStabbingTests},
       {"patch_stabbing_tests", s.patchStabbingTests},
+      {"patch_facing_rule_tests", s.patchFacingRuleTests},
+      {"mean_patches_seen_per_patch", s.meanPatchesSeen},
       {"unresolved_stabbing_tests", s.unresolvedStabbing},
-      {"stabbing", {{"cell_level", stabbingJson(s.cellStabbing)},
-                    {"patch_level", stabbingJson(s.patchStabbing)}}},
+      {"stabbing",
+       {{"cell_level", stabbingJson(s.cellStabbing)},
+        {"patch_level", stabbingJson(s.patchStabbing)}}},
       {"mean_sequence_length", s.meanSequenceLength},
       {"fig13_successes_by_length", s.cellHistogram.successes},
       {"fig13_failures_by_length", s.cellHistogram.failures},
       {"mean_blockers_per_partial", s.meanBlockersPerPartial},
       {"mean_shaft_cull_per_partial", s.meanShaftCullPerPartial},
       {"shaft_cull_sampled_pairs", s.shaftSamples},
-      {"seconds", {{"total", s.seconds}, {"cells", s.cellSeconds}, {"patches", s.patchSeconds},
-                   {"blockers", s.blockerSeconds}}},
+      {"seconds",
+       {{"total", s.seconds},
+        {"cells", s.cellSeconds},
+        {"patches", s.patchSeconds},
+        {"blockers", s.blockerSeconds}}},
       {"threads", s.threads},
-      {"paper", {{"patches", 403}, {"pairs_listed", 4391}, {"pairs_listed_percent", 5.4},
-                 {"partial_percent_of_listed", 64.1}, {"cell_stabbing_tests", 10128},
-                 {"patch_stabbing_tests", 16055}, {"mean_sequence_length", 5},
-                 {"mean_blockers_per_partial", 5}, {"cpu_seconds", 300}}}};
+      {"paper",
+       {{"patches", 403},
+        {"pairs_listed", 4391},
+        {"pairs_listed_percent", 5.4},
+        {"partial_percent_of_listed", 64.1},
+        {"cell_stabbing_tests", 10128},
+        {"patch_stabbing_tests", 16055},
+        {"mean_sequence_length", 5},
+        {"mean_blockers_per_partial", 5},
+        {"cpu_seconds", 300}}}};
 }
 
 VisibilityGraph readVisibilityTxt(const std::string& path) {

@@ -37,6 +37,12 @@ struct VisibilityStats {
   uint64_t cellPairsVisible = 0;       ///< ordered (source, reached) cell pairs, source included
   uint64_t cellStabbingTests = 0;      ///< portal-sequence tests of the cell-to-cell search
   uint64_t patchStabbingTests = 0;     ///< tests of the patch searches (portals and targets)
+  /// Of those, target tests in the source's own cell decided by the two-polygon facing rule
+  /// (no portal between: exact without the stabbing kernel; not in patchStabbing).
+  uint64_t patchFacingRuleTests = 0;
+  /// Patches a source patch's search saw (either facing), mean over sources: the candidates of
+  /// its blocker lists.
+  double meanPatchesSeen = 0;
   uint64_t unresolvedStabbing = 0;     ///< tests answered "maybe" (counted as visible)
   StabbingStats cellStabbing, patchStabbing;  ///< how the tests were decided, per search level
   double meanSequenceLength = 0;       ///< over the cell-level tests, in portals
