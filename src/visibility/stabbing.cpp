@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "visibility/separator_search.h"
+
 namespace gv {
 namespace {
 
@@ -54,6 +56,7 @@ StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
   degeneratePortals += o.degeneratePortals;
   lpSolves += o.lpSolves;
   simplexFallbacks += o.simplexFallbacks;
+  lpShortcuts += o.lpShortcuts;
   return *this;
 }
 
@@ -219,7 +222,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
     if (!level.clipped.empty() && depth_ >= 2) {
       if (!prev.separatorsKnown) {
-        separatingPlanes(prev.source, prev.clipped, prev.separators);
+        findSeparatingPlanes(prev.source, prev.clipped, prev.separators);
         prev.separatorsKnown = true;
       }
       clipByPlanes(prev.separators, level.clipped, scratch_, tol_);
@@ -337,6 +340,31 @@ void PortalSequenceStabber::lowerLazily(Level& level, size_t firstRow) const {
   x[kT] = std::max(t, lpBoxLo()[kT]);
 }
 
+// The LP point of the line from a to b (world points): its direction scaled to d·normal_ = 1
+// (false unless the line crosses the first portal's plane forward and lies in the box), t the
+// least value of rows [0, rowEnd).
+bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEnd,
+                                      LpVector& x) const {
+  const Vec3 p = toLocal(a);
+  Vec3 d = toLocal(b) - p;
+  const double along = dot(d, normal_);
+  if (!(along > kRelativeLengthEpsilon * length(d))) return false;
+  d = d / along;
+  const Vec3 m = cross(p, d);
+  const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
+  x[0] = d[j0], x[1] = d[j1], x[2] = m.x, x[3] = m.y, x[4] = m.z;
+  for (int j = 0; j < kT; ++j)
+    if (!(std::abs(x[j]) <= kStabbingMaxGrazingSlope)) return false;
+  double t = kStabbingMaxGrazingSlope;
+  for (size_t i = 0; i < rowEnd; ++i) {
+    double rest = rows_[i].b;
+    for (int j = 0; j < kT; ++j) rest -= rows_[i].a[j] * x[j];
+    t = std::min(t, rest / rows_[i].a[kT]);
+  }
+  x[kT] = std::max(t, lpBoxLo()[kT]);
+  return true;
+}
+
 StabbingResult PortalSequenceStabber::testLp(Level& level) {
   const LpVector lo = lpBoxLo(), hi = lpBoxHi();
   LpVector c{};
@@ -353,6 +381,25 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
       return StabbingResult::Unresolved;
     level.optimum = saved;
     level.optimal = savedOptimal;
+  }
+  // Before solving: the lines through the centres of the (clipped) first and new portals, and of
+  // the previous and new portals. Any box point is an LP point once t is the least row value, so
+  // one that is above the margin proves "not blocked" as well as the optimum would; a third of
+  // the solves on E1M1 end here.
+  {
+    const Vec3 target = centroidOf(level.clipped);
+    const Level& prev = levels_[depth_ - 1];
+    for (const Winding* from : {static_cast<const Winding*>(&level.source), &prev.clipped}) {
+      if (from->empty()) continue;
+      LpVector x;
+      if (!linePoint(centroidOf(*from), target, level.constraintEnd, x)) continue;
+      if (x[kT] >= -kStabbingLpMargin * sizeOf(x)) {
+        level.optimum = x;
+        level.optimal = false;
+        ++stats_.lpShortcuts;
+        return StabbingResult::Unresolved;
+      }
+    }
   }
   ++stats_.lpSolves;
   // The dual simplex, warm-started from the deepest basis on this path; its "blocked" is taken

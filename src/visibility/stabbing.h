@@ -44,6 +44,7 @@ struct StabbingStats {
   uint64_t degeneratePortals = 0;    ///< portals of ~zero area (their edges are not used)
   uint64_t lpSolves = 0;             ///< pushes that ran the LP solver (the costly step)
   uint64_t simplexFallbacks = 0;     ///< of which the dual simplex failed and Seidel's LP ran
+  uint64_t lpShortcuts = 0;          ///< pushes a line through portal centres kept without a solve
 
   StabbingStats& operator+=(const StabbingStats& o);
 };
@@ -134,6 +135,7 @@ class PortalSequenceStabber {
   };
 
   StabbingResult testLp(Level& level);
+  bool linePoint(const Vec3& a, const Vec3& b, size_t rowEnd, LpVector& x) const;
   void lowerLazily(Level& level, size_t firstRow) const;
   std::optional<Segment> cheapWitness(const Level& level);
   StabbingResult accept(Level& level, std::optional<Segment> witness);

@@ -1,0 +1,120 @@
+// Fast separating-plane search for two convex portals (paper §4.1). See separator_search.h; the
+// exact acceptance test is the one of portal_clipping.cpp (whose proof covers these planes).
+#include "visibility/separator_search.h"
+
+#include <cmath>
+
+#include "geometry/predicates.h"
+#include "geometry/tolerance.h"
+
+namespace gv {
+namespace {
+
+// Sign of det[b - a, v - a, q - a], exact: the floating-point value is trusted beyond Shewchuk's
+// error bound for this expression (rounded up to 1e-14 x the permanent), else orient3d decides.
+struct PlaneThrough3 {
+  Vec3 a, b, v, n, nAbs;
+
+  PlaneThrough3(const Vec3& a_, const Vec3& b_, const Vec3& v_) : a(a_), b(b_), v(v_) {
+    const Vec3 e = b - a, w = v - a;
+    n = cross(e, w);
+    nAbs = {std::abs(e.y * w.z) + std::abs(e.z * w.y), std::abs(e.z * w.x) + std::abs(e.x * w.z),
+            std::abs(e.x * w.y) + std::abs(e.y * w.x)};
+  }
+  int sign(const Vec3& q) const {
+    const Vec3 d = q - a;
+    const double det = dot(n, d);
+    const double permanent =
+        nAbs.x * std::abs(d.x) + nAbs.y * std::abs(d.y) + nAbs.z * std::abs(d.z);
+    if (det > 1e-14 * permanent) return 1;
+    if (det < -1e-14 * permanent) return -1;
+    return orient3d(a, b, v, q);
+  }
+};
+
+// The exact separator test of portal_clipping.cpp: is the plane through edges[i], edges[i+1] and
+// verts[j] a separator, and on which side are the edge polygon's other vertices (0: not one)?
+// Each polygon on its closed side; the edge's polygon touching the plane only along the edge;
+// the vertex's polygon at the vertex or along one more vertex, the two contact segments disjoint.
+int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_t i,
+                  std::span<const Vec3> verts, size_t j) {
+  const size_t ne = edges.size(), nv = verts.size();
+  const size_t k0 = (i + 2) % ne;
+  if (k0 == i) return 0;  // fewer than 3 vertices
+  const int sigma = plane.sign(edges[k0]);
+  if (sigma == 0) return 0;
+  size_t other = nv;  // a second vertex of `verts` on the plane, if any
+  for (size_t k = 0; k < nv; ++k) {
+    if (k == j) continue;
+    const int s = plane.sign(verts[k]);
+    if (s == sigma) return 0;
+    if (s == 0) {
+      if (other != nv) return 0;
+      other = k;
+    }
+  }
+  if (other != nv) {
+    const int axis = dominantAxis(plane.n);
+    const Vec3 &a = plane.a, &b = plane.b, &v = plane.v, &w = verts[other];
+    const int ov = orient2dProjected(a, b, v, axis), ow = orient2dProjected(a, b, w, axis);
+    const int oa = orient2dProjected(v, w, a, axis), ob = orient2dProjected(v, w, b, axis);
+    const bool disjoint = (ov != 0 && ov == ow) || (oa != 0 && oa == ob);
+    if (!disjoint) return 0;
+  }
+  for (size_t k = 0; k < ne; ++k) {
+    if (k == i || k == (i + 1) % ne || k == k0) continue;
+    if (plane.sign(edges[k]) != sigma) return 0;
+  }
+  return sigma;
+}
+
+void acceptIfSeparator(std::span<const Vec3> edges, size_t i, std::span<const Vec3> verts, size_t j,
+                       bool keepVertsSide, std::vector<ClipPlane>& out) {
+  const Vec3& a = edges[i];
+  const Vec3& b = edges[(i + 1) % edges.size()];
+  const PlaneThrough3 plane(a, b, verts[j]);
+  const int sigma = separatorSide(plane, edges, i, verts, j);
+  if (sigma == 0) return;
+  const double lenN = length(plane.n);
+  // A nearly collinear (edge, vertex) pair spans a badly conditioned plane: not used.
+  if (!(lenN > kRelativeModelEpsilon * length(b - a) * length(verts[j] - a))) return;
+  const double keep = keepVertsSide ? -sigma : sigma;
+  const Vec3 u = plane.n * (keep / lenN);
+  out.push_back({u, dot(u, a)});
+}
+
+// For each edge of `edges`: the planes through it touching `verts` from either rotation side
+// (the vertex polygon entirely on the negative, resp. positive, side of the plane through the
+// edge and the chosen vertex). Rotating about the edge's line, "w is beyond v" is transitive
+// while the polygon spans less than a half-turn about it; when it does not, no plane through the
+// edge has the polygon on one side and the exact test rejects the candidate.
+void appendSeparatorsFast(std::span<const Vec3> edges, std::span<const Vec3> verts,
+                          bool keepVertsSide, std::vector<ClipPlane>& out) {
+  const size_t ne = edges.size(), nv = verts.size();
+  for (size_t i = 0; i < ne; ++i) {
+    const Vec3& a = edges[i];
+    const Vec3 e = edges[(i + 1) % ne] - a;
+    size_t lo = 0, hi = 0;
+    Vec3 nLo = cross(e, verts[0] - a), nHi = nLo;
+    for (size_t k = 1; k < nv; ++k) {
+      const Vec3 w = verts[k] - a;
+      const double dLo = dot(nLo, w), dHi = dot(nHi, w);
+      if (dLo > 0) lo = k, nLo = cross(e, w);
+      if (dHi < 0) hi = k, nHi = cross(e, w);
+    }
+    acceptIfSeparator(edges, i, verts, lo, keepVertsSide, out);
+    if (hi != lo) acceptIfSeparator(edges, i, verts, hi, keepVertsSide, out);
+  }
+}
+
+}  // namespace
+
+void findSeparatingPlanes(std::span<const Vec3> source, std::span<const Vec3> pass,
+                          std::vector<ClipPlane>& out) {
+  out.clear();
+  if (source.size() < 3 || pass.size() < 3) return;
+  appendSeparatorsFast(source, pass, true, out);
+  appendSeparatorsFast(pass, source, false, out);
+}
+
+}  // namespace gv
