@@ -10,6 +10,9 @@
 namespace gv {
 namespace {
 
+// A vertex whose sine of angle to the edge's line (squared) is below this is taken as on it.
+constexpr double kAxisVertex = 1e-20;
+
 // Sign of det[b - a, v - a, q - a], exact: the floating-point value is trusted beyond Shewchuk's
 // error bound for this expression (rounded up to 1e-14 x the permanent), else orient3d decides.
 struct PlaneThrough3 {
@@ -32,12 +35,24 @@ struct PlaneThrough3 {
   }
 };
 
+// orient2dProjected with a floating-point filter first (Shewchuk's bound for orient2d, rounded
+// up): the exact predicate runs only when the rounded determinant is too small to trust.
+int orient2dFast(const Vec3& a, const Vec3& b, const Vec3& c, int dropAxis) {
+  const int u = (dropAxis + 1) % 3, v = (dropAxis + 2) % 3;
+  const double l = (b[u] - a[u]) * (c[v] - a[v]), r = (b[v] - a[v]) * (c[u] - a[u]);
+  const double det = l - r, bound = 4e-16 * (std::abs(l) + std::abs(r));
+  if (det > bound) return 1;
+  if (det < -bound) return -1;
+  return orient2dProjected(a, b, c, dropAxis);
+}
+
 // The exact separator test of portal_clipping.cpp: is the plane through edges[i], edges[i+1] and
 // verts[j] a separator, and on which side are the edge polygon's other vertices (0: not one)?
 // Each polygon on its closed side; the edge's polygon touching the plane only along the edge;
 // the vertex's polygon at the vertex or along one more vertex, the two contact segments disjoint.
+// `contact` receives that second vertex (verts.size() when there is none).
 int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_t i,
-                  std::span<const Vec3> verts, size_t j) {
+                  std::span<const Vec3> verts, size_t j, size_t& contact) {
   const size_t ne = edges.size(), nv = verts.size();
   const size_t k0 = (i + 2) % ne;
   if (k0 == i) return 0;  // fewer than 3 vertices
@@ -56,8 +71,8 @@ int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_
   if (other != nv) {
     const int axis = dominantAxis(plane.n);
     const Vec3 &a = plane.a, &b = plane.b, &v = plane.v, &w = verts[other];
-    const int ov = orient2dProjected(a, b, v, axis), ow = orient2dProjected(a, b, w, axis);
-    const int oa = orient2dProjected(v, w, a, axis), ob = orient2dProjected(v, w, b, axis);
+    const int ov = orient2dFast(a, b, v, axis), ow = orient2dFast(a, b, w, axis);
+    const int oa = orient2dFast(v, w, a, axis), ob = orient2dFast(v, w, b, axis);
     const bool disjoint = (ov != 0 && ov == ow) || (oa != 0 && oa == ob);
     if (!disjoint) return 0;
   }
@@ -65,16 +80,23 @@ int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_
     if (k == i || k == (i + 1) % ne || k == k0) continue;
     if (plane.sign(edges[k]) != sigma) return 0;
   }
+  contact = other;
   return sigma;
 }
 
+// `secondFamily`: edges of the pass, vertices of the source. A plane touching the source along
+// an edge of it holds an edge of each polygon, and the first family (edges of the source) has
+// listed it already under the same conditions: it is not listed twice.
 void acceptIfSeparator(std::span<const Vec3> edges, size_t i, std::span<const Vec3> verts, size_t j,
-                       bool keepVertsSide, std::vector<ClipPlane>& out) {
+                       bool keepVertsSide, bool secondFamily, std::vector<ClipPlane>& out) {
   const Vec3& a = edges[i];
   const Vec3& b = edges[(i + 1) % edges.size()];
   const PlaneThrough3 plane(a, b, verts[j]);
-  const int sigma = separatorSide(plane, edges, i, verts, j);
+  const size_t nv = verts.size();
+  size_t contact = nv;
+  const int sigma = separatorSide(plane, edges, i, verts, j, contact);
   if (sigma == 0) return;
+  if (secondFamily && contact != nv && (contact == (j + 1) % nv || j == (contact + 1) % nv)) return;
   const double lenN = length(plane.n);
   // A nearly collinear (edge, vertex) pair spans a badly conditioned plane: not used.
   if (!(lenN > kRelativeModelEpsilon * length(b - a) * length(verts[j] - a))) return;
@@ -94,16 +116,25 @@ void appendSeparatorsFast(std::span<const Vec3> edges, std::span<const Vec3> ver
   for (size_t i = 0; i < ne; ++i) {
     const Vec3& a = edges[i];
     const Vec3 e = edges[(i + 1) % ne] - a;
-    size_t lo = 0, hi = 0;
-    Vec3 nLo = cross(e, verts[0] - a), nHi = nLo;
-    for (size_t k = 1; k < nv; ++k) {
+    // A vertex on the edge's line lies on every plane through the edge and has no place in the
+    // rotation order: it is skipped (the exact test still sees it).
+    const double ee = lengthSquared(e);
+    size_t lo = nv, hi = nv;
+    Vec3 nLo{}, nHi{};
+    for (size_t k = 0; k < nv; ++k) {
       const Vec3 w = verts[k] - a;
-      const double dLo = dot(nLo, w), dHi = dot(nHi, w);
-      if (dLo > 0) lo = k, nLo = cross(e, w);
-      if (dHi < 0) hi = k, nHi = cross(e, w);
+      const Vec3 n = cross(e, w);
+      if (!(lengthSquared(n) > kAxisVertex * ee * lengthSquared(w))) continue;
+      if (lo == nv) {
+        lo = hi = k, nLo = nHi = n;
+        continue;
+      }
+      if (dot(nLo, w) > 0) lo = k, nLo = n;
+      if (dot(nHi, w) < 0) hi = k, nHi = n;
     }
-    acceptIfSeparator(edges, i, verts, lo, keepVertsSide, out);
-    if (hi != lo) acceptIfSeparator(edges, i, verts, hi, keepVertsSide, out);
+    if (lo == nv) continue;
+    acceptIfSeparator(edges, i, verts, lo, keepVertsSide, !keepVertsSide, out);
+    if (hi != lo) acceptIfSeparator(edges, i, verts, hi, keepVertsSide, !keepVertsSide, out);
   }
 }
 
