@@ -18,6 +18,7 @@ namespace gv {
 inline StabbingOptions pvsStabbingOptions() {
   StabbingOptions o;
   o.seekWitness = false;
+  o.deferLp = true;
   return o;
 }
 

@@ -13,25 +13,34 @@ namespace {
 // A vertex whose sine of angle to the edge's line (squared) is below this is taken as on it.
 constexpr double kAxisVertex = 1e-20;
 
+// i + 1 modulo n, without an integer division (n >= 1, i < n).
+inline size_t nextIndex(size_t i, size_t n) {
+  return i + 1 == n ? 0 : i + 1;
+}
+
 // Sign of det[b - a, v - a, q - a], exact: the floating-point value is trusted beyond Shewchuk's
 // error bound for this expression (rounded up to 1e-14 x the permanent), else orient3d decides.
+// Holds its points by address (they outlive it): no copies on this hot path.
 struct PlaneThrough3 {
-  Vec3 a, b, v, n, nAbs;
+  const Vec3 *a, *b, *v;
+  Vec3 n, nAbs;
+  double nn;  // |n|^2
 
-  PlaneThrough3(const Vec3& a_, const Vec3& b_, const Vec3& v_) : a(a_), b(b_), v(v_) {
-    const Vec3 e = b - a, w = v - a;
+  PlaneThrough3(const Vec3& a_, const Vec3& b_, const Vec3& v_) : a(&a_), b(&b_), v(&v_) {
+    const Vec3 e = b_ - a_, w = v_ - a_;
     n = cross(e, w);
+    nn = lengthSquared(n);
     nAbs = {std::abs(e.y * w.z) + std::abs(e.z * w.y), std::abs(e.z * w.x) + std::abs(e.x * w.z),
             std::abs(e.x * w.y) + std::abs(e.y * w.x)};
   }
   int sign(const Vec3& q) const {
-    const Vec3 d = q - a;
+    const Vec3 d = q - *a;
     const double det = dot(n, d);
     const double permanent =
         nAbs.x * std::abs(d.x) + nAbs.y * std::abs(d.y) + nAbs.z * std::abs(d.z);
     if (det > 1e-14 * permanent) return 1;
     if (det < -1e-14 * permanent) return -1;
-    return orient3d(a, b, v, q);
+    return orient3d(*a, *b, *v, q);
   }
 };
 
@@ -54,8 +63,8 @@ int orient2dFast(const Vec3& a, const Vec3& b, const Vec3& c, int dropAxis) {
 int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_t i,
                   std::span<const Vec3> verts, size_t j, size_t& contact) {
   const size_t ne = edges.size(), nv = verts.size();
-  const size_t k0 = (i + 2) % ne;
-  if (k0 == i) return 0;  // fewer than 3 vertices
+  if (ne < 3) return 0;
+  const size_t i1 = nextIndex(i, ne), k0 = nextIndex(i1, ne);
   const int sigma = plane.sign(edges[k0]);
   if (sigma == 0) return 0;
   size_t other = nv;  // a second vertex of `verts` on the plane, if any
@@ -70,14 +79,14 @@ int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_
   }
   if (other != nv) {
     const int axis = dominantAxis(plane.n);
-    const Vec3 &a = plane.a, &b = plane.b, &v = plane.v, &w = verts[other];
+    const Vec3 &a = *plane.a, &b = *plane.b, &v = *plane.v, &w = verts[other];
     const int ov = orient2dFast(a, b, v, axis), ow = orient2dFast(a, b, w, axis);
     const int oa = orient2dFast(v, w, a, axis), ob = orient2dFast(v, w, b, axis);
     const bool disjoint = (ov != 0 && ov == ow) || (oa != 0 && oa == ob);
     if (!disjoint) return 0;
   }
   for (size_t k = 0; k < ne; ++k) {
-    if (k == i || k == (i + 1) % ne || k == k0) continue;
+    if (k == i || k == i1 || k == k0) continue;
     if (plane.sign(edges[k]) != sigma) return 0;
   }
   contact = other;
@@ -90,18 +99,20 @@ int separatorSide(const PlaneThrough3& plane, std::span<const Vec3> edges, size_
 void acceptIfSeparator(std::span<const Vec3> edges, size_t i, std::span<const Vec3> verts, size_t j,
                        bool keepVertsSide, bool secondFamily, std::vector<ClipPlane>& out) {
   const Vec3& a = edges[i];
-  const Vec3& b = edges[(i + 1) % edges.size()];
+  const Vec3& b = edges[nextIndex(i, edges.size())];
   const PlaneThrough3 plane(a, b, verts[j]);
+  // A nearly collinear (edge, vertex) pair spans a badly conditioned plane: its rounded normal
+  // could tilt by more than the clip slack covers, so it is not used (keeping more).
+  constexpr double kMinSine2 = kRelativeModelEpsilon * kRelativeModelEpsilon;
+  if (!(plane.nn > kMinSine2 * lengthSquared(b - a) * lengthSquared(verts[j] - a))) return;
   const size_t nv = verts.size();
   size_t contact = nv;
   const int sigma = separatorSide(plane, edges, i, verts, j, contact);
   if (sigma == 0) return;
-  if (secondFamily && contact != nv && (contact == (j + 1) % nv || j == (contact + 1) % nv)) return;
-  const double lenN = length(plane.n);
-  // A nearly collinear (edge, vertex) pair spans a badly conditioned plane: not used.
-  if (!(lenN > kRelativeModelEpsilon * length(b - a) * length(verts[j] - a))) return;
+  if (secondFamily && contact != nv && (contact == nextIndex(j, nv) || j == nextIndex(contact, nv)))
+    return;
   const double keep = keepVertsSide ? -sigma : sigma;
-  const Vec3 u = plane.n * (keep / lenN);
+  const Vec3 u = plane.n * (keep / std::sqrt(plane.nn));
   out.push_back({u, dot(u, a)});
 }
 
@@ -115,7 +126,7 @@ void appendSeparatorsFast(std::span<const Vec3> edges, std::span<const Vec3> ver
   const size_t ne = edges.size(), nv = verts.size();
   for (size_t i = 0; i < ne; ++i) {
     const Vec3& a = edges[i];
-    const Vec3 e = edges[(i + 1) % ne] - a;
+    const Vec3 e = edges[nextIndex(i, ne)] - a;
     // A vertex on the edge's line lies on every plane through the edge and has no place in the
     // rotation order: it is skipped (the exact test still sees it).
     const double ee = lengthSquared(e);

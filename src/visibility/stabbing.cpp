@@ -44,6 +44,40 @@ Vec3 centroidOf(std::span<const Vec3> loop) {
   return c / static_cast<double>(loop.size());
 }
 
+// clipToHalfspace (portal_clipping.h) in place, with the same arithmetic (so the same points),
+// each vertex's distance computed once, and no copy when nothing is cut. `dist` and `scratch`
+// are working memory.
+void clipInPlace(Winding& w, const Vec3& unitNormal, double offset, double slack,
+                 std::vector<double>& dist, Winding& scratch) {
+  const size_t n = w.size();
+  if (n == 0) return;
+  const double limit = offset - slack;
+  dist.resize(n);
+  bool allIn = true, allOut = true;
+  for (size_t i = 0; i < n; ++i) {
+    dist[i] = dot(unitNormal, w[i]) - limit;
+    allIn = allIn && dist[i] >= 0;
+    allOut = allOut && !(dist[i] >= 0);
+  }
+  if (allIn) return;
+  if (allOut) {
+    w.clear();
+    return;
+  }
+  scratch.clear();
+  for (size_t i = 0; i < n; ++i) {
+    const size_t j = i + 1 == n ? 0 : i + 1;
+    const Vec3& p = w[i];
+    const double dp = dist[i], dq = dist[j];
+    if (dp >= 0) scratch.push_back(p);
+    if ((dp >= 0) != (dq >= 0)) {
+      const double t = dp / (dp - dq);
+      scratch.push_back(p + (w[j] - p) * t);
+    }
+  }
+  w.swap(scratch);
+}
+
 }  // namespace
 
 StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
@@ -57,6 +91,8 @@ StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
   lpSolves += o.lpSolves;
   simplexFallbacks += o.simplexFallbacks;
   lpShortcuts += o.lpShortcuts;
+  lpDeferred += o.lpDeferred;
+  deferredBlocked += o.deferredBlocked;
   return *this;
 }
 
@@ -155,9 +191,10 @@ bool crossesForward(const Segment& line, std::span<const Vec3> w) {
 
 }  // namespace
 
-StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
+StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool mayDefer) {
   ++stats_.tests;
   witness_.reset();
+  if (depth_ > 0 && levels_[depth_ - 1].blocked) return StabbingResult::Blocked;
   // Levels are reused slot by slot (their windings keep their capacity): no allocation per push
   // once the search has been this deep.
   if (levels_.size() <= depth_) levels_.resize(depth_ + 1);
@@ -167,6 +204,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   level.lpValid = options_.useLinearProgram;
   level.separators.clear();
   level.separatorsKnown = false;
+  level.lpPending = level.blocked = false;
   level.witness.reset();
   level.basis = SimplexBasis{};
   level.optimal = false;
@@ -216,8 +254,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   if (options_.clipBySeparatingPlanes) {
     // The line crosses the first portal's plane once, forward: everything later is in front.
     if (!firstDegenerate_) {
-      clipToHalfspace(level.clipped, normal_, firstMinOffset_, tol_.length(), scratch_);
-      level.clipped.swap(scratch_);
+      clipInPlace(level.clipped, normal_, firstMinOffset_, tol_.length(), dist_, scratch_);
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
     if (!level.clipped.empty() && depth_ >= 2) {
@@ -225,7 +262,10 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
         findSeparatingPlanes(prev.source, prev.clipped, prev.separators);
         prev.separatorsKnown = true;
       }
-      clipByPlanes(prev.separators, level.clipped, scratch_, tol_);
+      for (const ClipPlane& plane : prev.separators) {
+        clipInPlace(level.clipped, plane.unitNormal, plane.offset, tol_.length(), dist_, scratch_);
+        if (level.clipped.empty()) break;
+      }
     }
     if (level.clipped.empty()) {
       ++stats_.blockedByClipping;
@@ -235,8 +275,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     // portal: the first portal's useful part is behind that plane.
     if (!degenerate) {
       const Vec3 n = normalize(newellNormal(level.original));
-      clipToHalfspace(level.source, -n, -maxDot(n, level.original), tol_.length(), scratch_);
-      level.source.swap(scratch_);
+      clipInPlace(level.source, -n, -maxDot(n, level.original), tol_.length(), dist_, scratch_);
       if (level.source.empty()) {
         ++stats_.blockedByClipping;
         return StabbingResult::Blocked;
@@ -259,6 +298,16 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     }
   }
 
+  // A deferred LP of the previous level is solved now that a portal got through the clipping
+  // on top of it (before this level's rows are added); if it is blocked, so is everything after.
+  if (prev.lpPending) {
+    prev.lpPending = false;
+    if (solveLp(depth_ - 1) == StabbingResult::Blocked) {
+      prev.blocked = true;
+      ++stats_.deferredBlocked;
+      return StabbingResult::Blocked;
+    }
+  }
   const size_t rowsBefore = rows_.size();
   if (level.lpValid) {
     if (!degenerate && level.clipped.size() >= 3) appendRows(level.clipped);
@@ -276,10 +325,21 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
       return accept(level, w);
     }
   }
-  if (level.lpValid && testLp(level) == StabbingResult::Blocked) {
-    rows_.resize(rowsBefore);
-    ++stats_.blockedByLp;
-    return StabbingResult::Blocked;
+  if (level.lpValid) {
+    std::optional<StabbingResult> r = tryLpWithoutSolve(depth_);
+    if (!r && mayDefer && options_.deferLp && !options_.seekWitness) {
+      // Only the subtree can still be pruned: solve when (if ever) a later portal survives its
+      // clipping on top of this one.
+      level.lpPending = true;
+      ++stats_.lpDeferred;
+      r = StabbingResult::Unresolved;
+    }
+    if (!r) r = solveLp(depth_);
+    if (*r == StabbingResult::Blocked) {
+      rows_.resize(rowsBefore);
+      ++stats_.blockedByLp;
+      return StabbingResult::Blocked;
+    }
   }
   std::optional<Segment> w;
   if (level.lpValid && options_.seekWitness) {
@@ -365,12 +425,10 @@ bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEn
   return true;
 }
 
-StabbingResult PortalSequenceStabber::testLp(Level& level) {
-  const LpVector lo = lpBoxLo(), hi = lpBoxHi();
-  LpVector c{};
-  c[kT] = 1;
-  const size_t first = levels_[depth_ - 1].constraintEnd;
-  const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
+std::optional<StabbingResult> PortalSequenceStabber::tryLpWithoutSolve(size_t index) {
+  Level& level = levels_[index];
+  const Level& prev = levels_[index - 1];
+  const size_t first = prev.constraintEnd;
   // If the previous point with t lowered is above the margin the answer is "not blocked" without
   // solving anything (most pushes).
   {
@@ -388,7 +446,6 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
   // the solves on E1M1 end here.
   {
     const Vec3 target = centroidOf(level.clipped);
-    const Level& prev = levels_[depth_ - 1];
     for (const Winding* from : {static_cast<const Winding*>(&level.source), &prev.clipped}) {
       if (from->empty()) continue;
       LpVector x;
@@ -401,6 +458,16 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
       }
     }
   }
+  return std::nullopt;
+}
+
+StabbingResult PortalSequenceStabber::solveLp(size_t index) {
+  Level& level = levels_[index];
+  const size_t first = levels_[index - 1].constraintEnd;
+  const LpVector lo = lpBoxLo(), hi = lpBoxHi();
+  LpVector c{};
+  c[kT] = 1;
+  const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
   ++stats_.lpSolves;
   // The dual simplex, warm-started from the deepest basis on this path; its "blocked" is taken
   // only on its re-checked Lagrangian bound, so solver rounding cannot cut a real sightline.
