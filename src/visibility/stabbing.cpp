@@ -15,6 +15,8 @@ namespace {
 // and the slack t (x5). The pivot component is fixed by d·normal = 1.
 constexpr int kDim = 6;
 constexpr int kT = 5;
+// Relaxation of the LP's rows (in units of the unit-scaled rows) for a retry of a degenerate LP.
+constexpr double kLpTieBreak = 1e-9;
 
 bool isDegenerate(std::span<const Vec3> loop, const Tolerance& tol) {
   if (loop.size() < 3) return true;
@@ -471,7 +473,18 @@ StabbingResult PortalSequenceStabber::solveLp(size_t index) {
   ++stats_.lpSolves;
   // The dual simplex, warm-started from the deepest basis on this path; its "blocked" is taken
   // only on its re-checked Lagrangian bound, so solver rounding cannot cut a real sightline.
-  const SimplexResult simplex = maximizeDualSimplex(kDim, rows, c, lo, hi, level.basis);
+  SimplexResult simplex = maximizeDualSimplex(kDim, rows, c, lo, hi, level.basis);
+  // A run that stalled or met a singular basis (degenerate LPs: many rows through one point, as
+  // axis-aligned portals give) is tried once more with every row relaxed by a different tiny
+  // amount, which breaks the ties. Relaxing only enlarges the feasible set, so that LP's bound
+  // is still an upper bound here: its "blocked" is still a proof. (A dual simplex run costs a
+  // few microseconds, Seidel's LP about a hundred.)
+  if (simplex.status != SimplexResult::Status::Optimal) {
+    perturbed_.assign(rows.begin(), rows.end());
+    for (size_t i = 0; i < perturbed_.size(); ++i)
+      perturbed_[i].b += kLpTieBreak * (1 + std::fmod(0.6180339887 * static_cast<double>(i), 1.0));
+    simplex = maximizeDualSimplex(kDim, perturbed_, c, lo, hi, SimplexBasis{});
+  }
   if (simplex.status == SimplexResult::Status::Optimal) {
     level.basis = simplex.basis;
     level.optimum = simplex.x;

@@ -167,6 +167,7 @@ class PortalSequenceStabber {
   std::vector<Level> levels_;  // slots [0, depth_) hold the sequence; later ones are spare storage
   size_t depth_ = 0;
   std::vector<LpConstraint> rows_;
+  std::vector<LpConstraint> perturbed_;  // rows_ relaxed for a retry of a degenerate LP
   SeidelLp lp_;
   StabbingStats stats_;
   std::optional<Segment> witness_;
