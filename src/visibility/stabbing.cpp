@@ -18,12 +18,14 @@ constexpr int kT = 5;
 // Relaxation of the LP's rows (in units of the unit-scaled rows) for a retry of a degenerate LP.
 constexpr double kLpTieBreak = 1e-9;
 
-bool isDegenerate(std::span<const Vec3> loop, const Tolerance& tol) {
+// `newell` is the loop's Newell normal (computed once per push by the caller).
+bool isDegenerate(std::span<const Vec3> loop, const Vec3& newell, const Tolerance& tol) {
   if (loop.size() < 3) return true;
   // Twice the area below length-tolerance x diameter: a sliver with no inside to cross.
-  double diameter = 0;
-  for (const Vec3& p : loop) diameter = std::max(diameter, distance(p, loop[0]));
-  return length(newellNormal(loop)) <= tol.length() * diameter;
+  double diameter2 = 0;
+  for (const Vec3& p : loop) diameter2 = std::max(diameter2, lengthSquared(p - loop[0]));
+  const double limit = tol.length();
+  return lengthSquared(newell) <= limit * limit * diameter2;
 }
 
 // The extreme offsets of a loop along n: portals from files are planar only up to their printed
@@ -211,7 +213,8 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   level.basis = SimplexBasis{};
   level.optimal = false;
   level.optimum = LpVector{};
-  const bool degenerate = isDegenerate(portal, tol_);
+  const Vec3 newell = newellNormal(portal);
+  const bool degenerate = isDegenerate(portal, newell, tol_);
   if (degenerate) ++stats_.degeneratePortals;
 
   if (depth_ == 0) {
@@ -221,7 +224,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
     invScale_ = 1.0 / scale_;
     firstDegenerate_ = degenerate;
     if (!degenerate) {
-      normal_ = normalize(newellNormal(portal));
+      normal_ = normalize(newell);
       firstMinOffset_ = minDot(normal_, portal);
       pivot_ = dominantAxis(normal_);
     } else {
@@ -276,7 +279,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
     // Symmetrically, the line crosses the new portal's plane forward after crossing the first
     // portal: the first portal's useful part is behind that plane.
     if (!degenerate) {
-      const Vec3 n = normalize(newellNormal(level.original));
+      const Vec3 n = normalize(newell);
       clipInPlace(level.source, -n, -maxDot(n, level.original), tol_.length(), dist_, scratch_);
       if (level.source.empty()) {
         ++stats_.blockedByClipping;
