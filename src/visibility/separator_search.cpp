@@ -128,20 +128,23 @@ void appendSeparatorsFast(std::span<const Vec3> edges, std::span<const Vec3> ver
     const Vec3& a = edges[i];
     const Vec3 e = edges[nextIndex(i, ne)] - a;
     // A vertex on the edge's line lies on every plane through the edge and has no place in the
-    // rotation order: it is skipped (the exact test still sees it).
+    // rotation order: it is never chosen (the exact test still sees it). The plane normal of a
+    // vertex is only formed when it would be chosen.
     const double ee = lengthSquared(e);
+    auto offAxis = [&](const Vec3& w, Vec3& n) {
+      n = cross(e, w);
+      return lengthSquared(n) > kAxisVertex * ee * lengthSquared(w);
+    };
     size_t lo = nv, hi = nv;
-    Vec3 nLo{}, nHi{};
+    Vec3 nLo{}, nHi{}, n;
     for (size_t k = 0; k < nv; ++k) {
       const Vec3 w = verts[k] - a;
-      const Vec3 n = cross(e, w);
-      if (!(lengthSquared(n) > kAxisVertex * ee * lengthSquared(w))) continue;
       if (lo == nv) {
-        lo = hi = k, nLo = nHi = n;
+        if (offAxis(w, n)) lo = hi = k, nLo = nHi = n;
         continue;
       }
-      if (dot(nLo, w) > 0) lo = k, nLo = n;
-      if (dot(nHi, w) < 0) hi = k, nHi = n;
+      if (dot(nLo, w) > 0 && offAxis(w, n)) lo = k, nLo = n;
+      if (dot(nHi, w) < 0 && offAxis(w, n)) hi = k, nHi = n;
     }
     if (lo == nv) continue;
     acceptIfSeparator(edges, i, verts, lo, keepVertsSide, !keepVertsSide, out);
