@@ -40,6 +40,9 @@ struct PlaneThrough3 {
         nAbs.x * std::abs(d.x) + nAbs.y * std::abs(d.y) + nAbs.z * std::abs(d.z);
     if (det > 1e-14 * permanent) return 1;
     if (det < -1e-14 * permanent) return -1;
+    // A vertex shared by the two portals (common in real maps) is exactly on the plane: no need
+    // for the exact arithmetic to say so.
+    if (q == *a || q == *b || q == *v) return 0;
     return orient3d(*a, *b, *v, q);
   }
 };
