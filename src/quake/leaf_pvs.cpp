@@ -174,7 +174,17 @@ struct Searcher {
       // Nothing this branch might reach is unseen: it cannot change the answer.
       if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], *might[ri], visible)) continue;
       ++sequences;
-      const bool stabbed = stabber.push(r.winding) != StabbingResult::Blocked;
+      // Entering a cell already seen, the push matters only for what lies behind it: its LP may
+      // wait until a deeper portal needs it.
+      const bool stabbed =
+          stabber.push(r.winding, visible.contains(r.to)) != StabbingResult::Blocked;
+      if (!stabbed && stabber.isTopBlocked()) {
+        // This cell's own sequence (length `depth`) was blocked after all: no push on it goes
+        // through. Its count moves from success to failure; the sequence r began is not counted.
+        --successes[depth];
+        count(depth, false);
+        return;
+      }
       count(depth + 1, stabbed);
       if (!stabbed) continue;
       visible.insert(r.to);

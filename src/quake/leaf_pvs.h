@@ -14,10 +14,13 @@
 namespace gv {
 
 /// The stabber's defaults without the witness-line search: the PVS needs only "blocked or not",
-/// and witness lines (a third of the search time on E1M1) never change what is pruned.
+/// and witness lines (a third of the search time on E1M1) never change what is pruned. With the
+/// LP deferred for cells already visible (`deferLp`: the same cells reached, a quarter fewer LP
+/// solves on E1M1).
 inline StabbingOptions pvsStabbingOptions() {
   StabbingOptions o;
   o.seekWitness = false;
+  o.deferLp = true;
   return o;
 }
 

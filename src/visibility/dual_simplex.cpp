@@ -15,6 +15,12 @@ namespace {
 constexpr double kSingularPivot = 1e-12;
 // Ratio-test entries below this are not pivoted on (they would blow the basis up).
 constexpr double kRatioEpsilon = 1e-12;
+// Pivots with an entry below this, or more than this many in a row, re-invert the basis instead
+// of updating its inverse.
+constexpr double kRefactorPivot = 1e-6;
+constexpr int kMaxRankOneUpdates = 8;
+// Multipliers may step this far below zero in the ratio test (Harris) to pivot on a larger entry.
+constexpr double kHarrisSlack = 1e-11;
 
 struct Row {
   LpVector a{};
@@ -118,19 +124,25 @@ SimplexResult maximizeDualSimplex(int dim, std::span<const LpConstraint> rows, c
   if (!fromWarm) basis = boxBasis(dim, c);
   const int maxPivots = 50 + 4 * static_cast<int>(rows.size() + 2 * static_cast<size_t>(dim));
   std::array<LpVector, kLpMaxDim> m{}, inv{};
-  LpVector q{}, x{}, y{};
+  LpVector q{}, x{}, y{}, w{};
+  bool factored = false;
+  int updates = 0;  // rank-one updates since the last inversion
   for (int iter = 0;; ++iter) {
     if (iter > maxPivots) return result;  // Failed: cycling or stalling
-    for (int k = 0; k < dim; ++k) {
-      const Row r = rowOf(basis.tight[k], rows, lo, hi);
-      m[k] = r.a;
-      q[k] = r.b;
-    }
-    if (!invert(dim, m, inv)) {
-      if (!fromWarm) return result;
-      basis = boxBasis(dim, c);  // a stale warm start: begin again from the box
-      fromWarm = false;
-      continue;
+    if (!factored) {
+      for (int k = 0; k < dim; ++k) {
+        const Row r = rowOf(basis.tight[k], rows, lo, hi);
+        m[k] = r.a;
+        q[k] = r.b;
+      }
+      if (!invert(dim, m, inv)) {
+        if (!fromWarm) return result;
+        basis = boxBasis(dim, c);  // a stale warm start: begin again from the box
+        fromWarm = false;
+        continue;
+      }
+      factored = true;
+      updates = 0;
     }
     double size = 1;
     for (int j = 0; j < dim; ++j) {
@@ -170,17 +182,39 @@ SimplexResult maximizeDualSimplex(int dim, std::span<const LpConstraint> rows, c
     }
     // Ratio test: y_B − θ w stays >= 0, w = a_enteringᵀ B⁻¹.
     const Row e = rowOf(entering, rows, lo, hi);
-    int leave = -1;
-    double best = INFINITY, bestW = 0;
+    // Harris's two passes: the largest step any candidate allows with its multiplier relaxed by
+    // kHarrisSlack, then among the candidates within that step the largest pivot entry (a
+    // larger entry keeps the next basis well conditioned; a multiplier that goes slightly
+    // negative is clamped to 0 by the bound's check, which stays valid for any y >= 0).
+    double limit = INFINITY;
     for (int k = 0; k < dim; ++k) {
-      double w = 0;
-      for (int j = 0; j < dim; ++j) w += e.a[j] * inv[j][k];
-      if (!(w > kRatioEpsilon)) continue;
-      const double ratio = std::max(0.0, y[k]) / w;
-      if (ratio < best || (ratio == best && w > bestW)) best = ratio, bestW = w, leave = k;
+      w[k] = 0;
+      for (int j = 0; j < dim; ++j) w[k] += e.a[j] * inv[j][k];
+      if (w[k] > kRatioEpsilon)
+        limit = std::min(limit, (std::max(0.0, y[k]) + kHarrisSlack) / w[k]);
+    }
+    int leave = -1;
+    double bestW = 0;
+    for (int k = 0; k < dim; ++k) {
+      if (!(w[k] > kRatioEpsilon) || std::max(0.0, y[k]) / w[k] > limit) continue;
+      if (w[k] > bestW) bestW = w[k], leave = k;
     }
     if (leave < 0) return result;  // dual unbounded: rows infeasible (not expected here)
     basis.tight[leave] = entering;
+    // The new inverse by a rank-one (Sherman–Morrison) update: row `leave` of the basis becomes
+    // e.a, and wᵀ = e.aᵀ B⁻¹, so B'⁻¹ = B⁻¹ − B⁻¹[:, leave] (w − e_leave)ᵀ / w_leave. Re-inverted
+    // from scratch every few pivots or after a small pivot, to keep rounding from piling up
+    // (only x's accuracy depends on it: "blocked" rests on the re-checked bound alone).
+    if (++updates > kMaxRankOneUpdates || w[leave] < kRefactorPivot) {
+      factored = false;
+      continue;
+    }
+    q[leave] = e.b;
+    LpVector col{};
+    for (int j = 0; j < dim; ++j) col[j] = inv[j][leave] / w[leave];
+    w[leave] -= 1;
+    for (int j = 0; j < dim; ++j)
+      for (int k = 0; k < dim; ++k) inv[j][k] -= col[j] * w[k];
   }
 }
 

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "visibility/separator_search.h"
+
 namespace gv {
 namespace {
 
@@ -13,13 +15,17 @@ namespace {
 // and the slack t (x5). The pivot component is fixed by d·normal = 1.
 constexpr int kDim = 6;
 constexpr int kT = 5;
+// Relaxation of the LP's rows (in units of the unit-scaled rows) for a retry of a degenerate LP.
+constexpr double kLpTieBreak = 1e-9;
 
-bool isDegenerate(std::span<const Vec3> loop, const Tolerance& tol) {
+// `newell` is the loop's Newell normal (computed once per push by the caller).
+bool isDegenerate(std::span<const Vec3> loop, const Vec3& newell, const Tolerance& tol) {
   if (loop.size() < 3) return true;
   // Twice the area below length-tolerance x diameter: a sliver with no inside to cross.
-  double diameter = 0;
-  for (const Vec3& p : loop) diameter = std::max(diameter, distance(p, loop[0]));
-  return length(newellNormal(loop)) <= tol.length() * diameter;
+  double diameter2 = 0;
+  for (const Vec3& p : loop) diameter2 = std::max(diameter2, lengthSquared(p - loop[0]));
+  const double limit = tol.length();
+  return lengthSquared(newell) <= limit * limit * diameter2;
 }
 
 // The extreme offsets of a loop along n: portals from files are planar only up to their printed
@@ -42,6 +48,40 @@ Vec3 centroidOf(std::span<const Vec3> loop) {
   return c / static_cast<double>(loop.size());
 }
 
+// clipToHalfspace (portal_clipping.h) in place, with the same arithmetic (so the same points),
+// each vertex's distance computed once, and no copy when nothing is cut. `dist` and `scratch`
+// are working memory.
+void clipInPlace(Winding& w, const Vec3& unitNormal, double offset, double slack,
+                 std::vector<double>& dist, Winding& scratch) {
+  const size_t n = w.size();
+  if (n == 0) return;
+  const double limit = offset - slack;
+  dist.resize(n);
+  bool allIn = true, allOut = true;
+  for (size_t i = 0; i < n; ++i) {
+    dist[i] = dot(unitNormal, w[i]) - limit;
+    allIn = allIn && dist[i] >= 0;
+    allOut = allOut && !(dist[i] >= 0);
+  }
+  if (allIn) return;
+  if (allOut) {
+    w.clear();
+    return;
+  }
+  scratch.clear();
+  for (size_t i = 0; i < n; ++i) {
+    const size_t j = i + 1 == n ? 0 : i + 1;
+    const Vec3& p = w[i];
+    const double dp = dist[i], dq = dist[j];
+    if (dp >= 0) scratch.push_back(p);
+    if ((dp >= 0) != (dq >= 0)) {
+      const double t = dp / (dp - dq);
+      scratch.push_back(p + (w[j] - p) * t);
+    }
+  }
+  w.swap(scratch);
+}
+
 }  // namespace
 
 StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
@@ -54,6 +94,9 @@ StabbingStats& StabbingStats::operator+=(const StabbingStats& o) {
   degeneratePortals += o.degeneratePortals;
   lpSolves += o.lpSolves;
   simplexFallbacks += o.simplexFallbacks;
+  lpShortcuts += o.lpShortcuts;
+  lpDeferred += o.lpDeferred;
+  deferredBlocked += o.deferredBlocked;
   return *this;
 }
 
@@ -152,9 +195,10 @@ bool crossesForward(const Segment& line, std::span<const Vec3> w) {
 
 }  // namespace
 
-StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
+StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool mayDefer) {
   ++stats_.tests;
   witness_.reset();
+  if (depth_ > 0 && levels_[depth_ - 1].blocked) return StabbingResult::Blocked;
   // Levels are reused slot by slot (their windings keep their capacity): no allocation per push
   // once the search has been this deep.
   if (levels_.size() <= depth_) levels_.resize(depth_ + 1);
@@ -164,11 +208,13 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   level.lpValid = options_.useLinearProgram;
   level.separators.clear();
   level.separatorsKnown = false;
+  level.lpPending = level.blocked = false;
   level.witness.reset();
   level.basis = SimplexBasis{};
   level.optimal = false;
   level.optimum = LpVector{};
-  const bool degenerate = isDegenerate(portal, tol_);
+  const Vec3 newell = newellNormal(portal);
+  const bool degenerate = isDegenerate(portal, newell, tol_);
   if (degenerate) ++stats_.degeneratePortals;
 
   if (depth_ == 0) {
@@ -178,7 +224,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     invScale_ = 1.0 / scale_;
     firstDegenerate_ = degenerate;
     if (!degenerate) {
-      normal_ = normalize(newellNormal(portal));
+      normal_ = normalize(newell);
       firstMinOffset_ = minDot(normal_, portal);
       pivot_ = dominantAxis(normal_);
     } else {
@@ -213,16 +259,18 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
   if (options_.clipBySeparatingPlanes) {
     // The line crosses the first portal's plane once, forward: everything later is in front.
     if (!firstDegenerate_) {
-      clipToHalfspace(level.clipped, normal_, firstMinOffset_, tol_.length(), scratch_);
-      level.clipped.swap(scratch_);
+      clipInPlace(level.clipped, normal_, firstMinOffset_, tol_.length(), dist_, scratch_);
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
     if (!level.clipped.empty() && depth_ >= 2) {
       if (!prev.separatorsKnown) {
-        separatingPlanes(prev.source, prev.clipped, prev.separators);
+        findSeparatingPlanes(prev.source, prev.clipped, prev.separators);
         prev.separatorsKnown = true;
       }
-      clipByPlanes(prev.separators, level.clipped, scratch_, tol_);
+      for (const ClipPlane& plane : prev.separators) {
+        clipInPlace(level.clipped, plane.unitNormal, plane.offset, tol_.length(), dist_, scratch_);
+        if (level.clipped.empty()) break;
+      }
     }
     if (level.clipped.empty()) {
       ++stats_.blockedByClipping;
@@ -231,9 +279,8 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     // Symmetrically, the line crosses the new portal's plane forward after crossing the first
     // portal: the first portal's useful part is behind that plane.
     if (!degenerate) {
-      const Vec3 n = normalize(newellNormal(level.original));
-      clipToHalfspace(level.source, -n, -maxDot(n, level.original), tol_.length(), scratch_);
-      level.source.swap(scratch_);
+      const Vec3 n = normalize(newell);
+      clipInPlace(level.source, -n, -maxDot(n, level.original), tol_.length(), dist_, scratch_);
       if (level.source.empty()) {
         ++stats_.blockedByClipping;
         return StabbingResult::Blocked;
@@ -256,6 +303,16 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
     }
   }
 
+  // A deferred LP of the previous level is solved now that a portal got through the clipping
+  // on top of it (before this level's rows are added); if it is blocked, so is everything after.
+  if (prev.lpPending) {
+    prev.lpPending = false;
+    if (solveLp(depth_ - 1) == StabbingResult::Blocked) {
+      prev.blocked = true;
+      ++stats_.deferredBlocked;
+      return StabbingResult::Blocked;
+    }
+  }
   const size_t rowsBefore = rows_.size();
   if (level.lpValid) {
     if (!degenerate && level.clipped.size() >= 3) appendRows(level.clipped);
@@ -273,10 +330,21 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal) {
       return accept(level, w);
     }
   }
-  if (level.lpValid && testLp(level) == StabbingResult::Blocked) {
-    rows_.resize(rowsBefore);
-    ++stats_.blockedByLp;
-    return StabbingResult::Blocked;
+  if (level.lpValid) {
+    std::optional<StabbingResult> r = tryLpWithoutSolve(depth_);
+    if (!r && mayDefer && options_.deferLp && !options_.seekWitness) {
+      // Only the subtree can still be pruned: solve when (if ever) a later portal survives its
+      // clipping on top of this one.
+      level.lpPending = true;
+      ++stats_.lpDeferred;
+      r = StabbingResult::Unresolved;
+    }
+    if (!r) r = solveLp(depth_);
+    if (*r == StabbingResult::Blocked) {
+      rows_.resize(rowsBefore);
+      ++stats_.blockedByLp;
+      return StabbingResult::Blocked;
+    }
   }
   std::optional<Segment> w;
   if (level.lpValid && options_.seekWitness) {
@@ -337,12 +405,35 @@ void PortalSequenceStabber::lowerLazily(Level& level, size_t firstRow) const {
   x[kT] = std::max(t, lpBoxLo()[kT]);
 }
 
-StabbingResult PortalSequenceStabber::testLp(Level& level) {
-  const LpVector lo = lpBoxLo(), hi = lpBoxHi();
-  LpVector c{};
-  c[kT] = 1;
-  const size_t first = levels_[depth_ - 1].constraintEnd;
-  const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
+// The LP point of the line from a to b (world points): its direction scaled to d·normal_ = 1
+// (false unless the line crosses the first portal's plane forward and lies in the box), t the
+// least value of rows [0, rowEnd).
+bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEnd,
+                                      LpVector& x) const {
+  const Vec3 p = toLocal(a);
+  Vec3 d = toLocal(b) - p;
+  const double along = dot(d, normal_);
+  if (!(along > kRelativeLengthEpsilon * length(d))) return false;
+  d = d / along;
+  const Vec3 m = cross(p, d);
+  const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
+  x[0] = d[j0], x[1] = d[j1], x[2] = m.x, x[3] = m.y, x[4] = m.z;
+  for (int j = 0; j < kT; ++j)
+    if (!(std::abs(x[j]) <= kStabbingMaxGrazingSlope)) return false;
+  double t = kStabbingMaxGrazingSlope;
+  for (size_t i = 0; i < rowEnd; ++i) {
+    double rest = rows_[i].b;
+    for (int j = 0; j < kT; ++j) rest -= rows_[i].a[j] * x[j];
+    t = std::min(t, rest / rows_[i].a[kT]);
+  }
+  x[kT] = std::max(t, lpBoxLo()[kT]);
+  return true;
+}
+
+std::optional<StabbingResult> PortalSequenceStabber::tryLpWithoutSolve(size_t index) {
+  Level& level = levels_[index];
+  const Level& prev = levels_[index - 1];
+  const size_t first = prev.constraintEnd;
   // If the previous point with t lowered is above the margin the answer is "not blocked" without
   // solving anything (most pushes).
   {
@@ -354,10 +445,49 @@ StabbingResult PortalSequenceStabber::testLp(Level& level) {
     level.optimum = saved;
     level.optimal = savedOptimal;
   }
+  // Before solving: the lines through the centres of the (clipped) first and new portals, and of
+  // the previous and new portals. Any box point is an LP point once t is the least row value, so
+  // one that is above the margin proves "not blocked" as well as the optimum would; a third of
+  // the solves on E1M1 end here.
+  {
+    const Vec3 target = centroidOf(level.clipped);
+    for (const Winding* from : {static_cast<const Winding*>(&level.source), &prev.clipped}) {
+      if (from->empty()) continue;
+      LpVector x;
+      if (!linePoint(centroidOf(*from), target, level.constraintEnd, x)) continue;
+      if (x[kT] >= -kStabbingLpMargin * sizeOf(x)) {
+        level.optimum = x;
+        level.optimal = false;
+        ++stats_.lpShortcuts;
+        return StabbingResult::Unresolved;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+StabbingResult PortalSequenceStabber::solveLp(size_t index) {
+  Level& level = levels_[index];
+  const size_t first = levels_[index - 1].constraintEnd;
+  const LpVector lo = lpBoxLo(), hi = lpBoxHi();
+  LpVector c{};
+  c[kT] = 1;
+  const std::span<const LpConstraint> rows(rows_.data(), level.constraintEnd);
   ++stats_.lpSolves;
   // The dual simplex, warm-started from the deepest basis on this path; its "blocked" is taken
   // only on its re-checked Lagrangian bound, so solver rounding cannot cut a real sightline.
-  const SimplexResult simplex = maximizeDualSimplex(kDim, rows, c, lo, hi, level.basis);
+  SimplexResult simplex = maximizeDualSimplex(kDim, rows, c, lo, hi, level.basis);
+  // A run that stalled or met a singular basis (degenerate LPs: many rows through one point, as
+  // axis-aligned portals give) is tried once more with every row relaxed by a different tiny
+  // amount, which breaks the ties. Relaxing only enlarges the feasible set, so that LP's bound
+  // is still an upper bound here: its "blocked" is still a proof. (A dual simplex run costs a
+  // few microseconds, Seidel's LP about a hundred.)
+  if (simplex.status != SimplexResult::Status::Optimal) {
+    perturbed_.assign(rows.begin(), rows.end());
+    for (size_t i = 0; i < perturbed_.size(); ++i)
+      perturbed_[i].b += kLpTieBreak * (1 + std::fmod(0.6180339887 * static_cast<double>(i), 1.0));
+    simplex = maximizeDualSimplex(kDim, perturbed_, c, lo, hi, SimplexBasis{});
+  }
   if (simplex.status == SimplexResult::Status::Optimal) {
     level.basis = simplex.basis;
     level.optimum = simplex.x;

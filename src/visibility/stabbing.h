@@ -44,6 +44,9 @@ struct StabbingStats {
   uint64_t degeneratePortals = 0;    ///< portals of ~zero area (their edges are not used)
   uint64_t lpSolves = 0;             ///< pushes that ran the LP solver (the costly step)
   uint64_t simplexFallbacks = 0;     ///< of which the dual simplex failed and Seidel's LP ran
+  uint64_t lpShortcuts = 0;          ///< pushes a line through portal centres kept without a solve
+  uint64_t lpDeferred = 0;           ///< LP solves put off (StabbingOptions::deferLp)
+  uint64_t deferredBlocked = 0;      ///< of which, once solved, proved the sequence blocked
 
   StabbingStats& operator+=(const StabbingStats& o);
 };
@@ -63,6 +66,14 @@ struct StabbingOptions {
   /// clip). Prunes a few more sequences before the LP, at the price of finding those planes anew
   /// on every push.
   bool backClip = false;
+  /// Let push(portal, mayDefer = true) put off an LP solve that only prunes: the push answers
+  /// Unresolved, and the LP is solved when a later portal gets through the clipping on top of
+  /// it; if it then proves blocked, that push and every further push on the level answer Blocked
+  /// (see isTopBlocked()). A search then reaches the same cells with fewer solves (and a few more
+  /// pushes: the clipping of portals behind a level whose LP would have pruned it). For searches
+  /// that need no answer for the level itself (the leaf PVS, when its cell is already visible).
+  /// Ignored when seekWitness is set.
+  bool deferLp = false;
 };
 
 /// An incremental stabbing-line test for a growing sequence of convex portals.
@@ -100,7 +111,10 @@ class PortalSequenceStabber {
 
   /// Tests the current sequence followed by `portal`. On Blocked the sequence is unchanged; on
   /// Stabbed or Unresolved the portal is appended (undo with pop()).
-  StabbingResult push(std::span<const Vec3> portal);
+  StabbingResult push(std::span<const Vec3> portal, bool mayDefer = false);
+  /// Whether the last portal pushed turned out blocked after all (its deferred LP was solved by a
+  /// later push, which answered Blocked): nothing more can be pushed on it; pop it.
+  bool isTopBlocked() const { return depth_ > 0 && levels_[depth_ - 1].blocked; }
   /// Removes the last portal pushed (the sequence must not be empty).
   void pop();
   /// Empties the sequence (keeps statistics).
@@ -131,9 +145,13 @@ class PortalSequenceStabber {
     // Separating planes of (source, clipped): they clip every portal pushed after this level.
     std::vector<ClipPlane> separators;
     bool separatorsKnown = false;
+    bool lpPending = false;  // the LP solve was deferred (deferLp)
+    bool blocked = false;    // the deferred solve proved the sequence blocked
   };
 
-  StabbingResult testLp(Level& level);
+  std::optional<StabbingResult> tryLpWithoutSolve(size_t index);
+  StabbingResult solveLp(size_t index);
+  bool linePoint(const Vec3& a, const Vec3& b, size_t rowEnd, LpVector& x) const;
   void lowerLazily(Level& level, size_t firstRow) const;
   std::optional<Segment> cheapWitness(const Level& level);
   StabbingResult accept(Level& level, std::optional<Segment> witness);
@@ -149,6 +167,7 @@ class PortalSequenceStabber {
   std::vector<Level> levels_;  // slots [0, depth_) hold the sequence; later ones are spare storage
   size_t depth_ = 0;
   std::vector<LpConstraint> rows_;
+  std::vector<LpConstraint> perturbed_;  // rows_ relaxed for a retry of a degenerate LP
   SeidelLp lp_;
   StabbingStats stats_;
   std::optional<Segment> witness_;
@@ -161,6 +180,7 @@ class PortalSequenceStabber {
   bool firstDegenerate_ = false;
   double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
+  std::vector<double> dist_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;
 };
