@@ -84,18 +84,20 @@ TEST(PhotonReferenceTest, FurnaceGivesEOverOneMinusRho) {
 }
 
 // KNOWN DISCREPANCY (2026-12-01): the allowances below are the measured solver-vs-photon
-// differences at default options, not the goal (1 %). After the fixes of this change (sampled
-// visibility on the exchanging parts, kept sampled-invisible links, kernel-weighted visibility,
-// receiver consistency) the Cornell box is 1.4 % dark on average (it was 3.5 %), worst patch
-// channel 6 % (the block faces); the office 5.4 % dark (it was 18.7 % bright). The remaining
-// darkness shrinks slowly with --epsilon (Cornell: -1.1 % mean at 5e-6), so it is refinement
-// that the BF bound does not target; unresolved. These tests guard against regressions.
+// differences at default options plus a little, not the goal (1 %). Measured after the taps of
+// Partial links (hierarchical_radiosity.cpp, Tap): Cornell mean -0.5 %, worst patch channel
+// 4.2 %, RMS 1.3 % (was -1.4 % / 6 %); office mean -2.6 %, worst 5.5 %, RMS 3.0 % (was -5.4 % /
+// 12.9 %). What remains is mostly light lost into backs by leaves that straddle a contact (the
+// ceiling over a lamp hanging 2 cm below it, floor strips under walls): such a leaf spreads
+// its light over its hidden part, which then re-emits it into the backs (an energy audit of a
+// one-room office: 4.6 % of the emitted power leaves through links' 1 - ΣF, against 0.1 % of
+// photons ending on backs). These tests guard against regressions.
 TEST(RadiosityPhotonTest, CornellBoxMatchesLightTracing) {
-  checkAgainstPhotons(generateCornellBox(), 2'000'000, 45, 0.07, 0.02);
+  checkAgainstPhotons(generateCornellBox(), 2'000'000, 45, 0.05, 0.01);
 }
 
 TEST(RadiosityPhotonTest, DefaultOfficeMatchesLightTracing) {
-  checkAgainstPhotons(generateOffice(), 2'000'000, 200, 0.12, 0.07);
+  checkAgainstPhotons(generateOffice(), 2'000'000, 200, 0.07, 0.035);
 }
 
 TEST(RadiosityPhotonTest, PartialLinksGatherThePartOfTheSourceInView) {
