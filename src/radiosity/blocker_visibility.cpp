@@ -109,7 +109,7 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
   ++level.partial;
   // The sampling of `rays` mode (link_sampling.h), tested against the kept blockers only.
   SplitMix64 rng(seed);
-  const std::optional<SampledVisibility> sampled = sampleLinkVisibility(
+  std::optional<SampledVisibility> sampled = sampleLinkVisibility(
       a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
         return segmentBlocked(p, q, v.blockers, table_, tol_.length());
       });

@@ -38,4 +38,15 @@ std::optional<SampledVisibility> sampleLinkVisibility(
   return v;
 }
 
+VisibilityEstimate estimateFromSamples(SampledVisibility&& sampled) {
+  VisibilityEstimate e;
+  e.raysCast = sampled.samples;
+  e.fraction = sampled.fraction;
+  e.status = sampled.clear == 0 ? VisibilityStatus::Invisible
+                                : (sampled.clear == sampled.samples ? VisibilityStatus::Visible
+                                                                    : VisibilityStatus::Partial);
+  if (e.status == VisibilityStatus::Partial) e.clearSamples = std::move(sampled.clearSamples);
+  return e;
+}
+
 }  // namespace gv

@@ -29,4 +29,8 @@ std::optional<SampledVisibility> sampleLinkVisibility(
     const ConvexPolygon& a, const ConvexPolygon& b, int count, const Tolerance& tol,
     SplitMix64& rng, const std::function<bool(const Vec3& from, const Vec3& to)>& blocked);
 
+/// What sampled visibility says when nothing else is known: Invisible when no sample is clear,
+/// Visible when all are, else Partial, keeping the clear samples (the solver's taps).
+VisibilityEstimate estimateFromSamples(SampledVisibility&& sampled);
+
 }  // namespace gv

@@ -29,22 +29,15 @@ void RayVisibility::forEachCandidatePair(
 VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, TubeId,
                                            uint64_t seed) {
   SplitMix64 rng(seed);
-  const std::optional<SampledVisibility> v = sampleLinkVisibility(
+  std::optional<SampledVisibility> v = sampleLinkVisibility(
       a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
         const Vec3 d = q - p;
         const double len = length(d);
         const double pull = len > 0 ? std::min(0.01, endOffset_ / len) : 0.0;
         return rays_.occluded(p + d * pull, q - d * pull, a.patch, b.patch);
       });
-  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0};
-  VisibilityEstimate e;
-  e.raysCast = v->samples;
-  e.fraction = v->fraction;
-  e.status = v->clear == 0
-                 ? VisibilityStatus::Invisible
-                 : (v->clear == v->samples ? VisibilityStatus::Visible : VisibilityStatus::Partial);
-  if (e.status == VisibilityStatus::Partial) e.clearSamples = std::move(v->clearSamples);
-  return e;
+  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0, {}};
+  return estimateFromSamples(std::move(*v));
 }
 
 }  // namespace gv

@@ -72,19 +72,14 @@ VisibilityEstimate ShaftVisibility::estimate(const Element& a, const Element& b,
     return e;  // Visible, fraction 1, no rays
   }
   SplitMix64 rng(seed);
-  const std::optional<SampledVisibility> v = sampleLinkVisibility(
+  std::optional<SampledVisibility> v = sampleLinkVisibility(
       a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
         return std::any_of(list.begin(), list.end(), [&](uint32_t c) {
           return segmentCrossesPolygon(p, q, scene_.patches[c].polygon, eps_);
         });
       });
-  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0};
-  e.raysCast = v->samples;
-  e.fraction = v->fraction;
-  e.status = v->clear == 0
-                 ? VisibilityStatus::Invisible
-                 : (v->clear == v->samples ? VisibilityStatus::Visible : VisibilityStatus::Partial);
-  if (e.status == VisibilityStatus::Partial) e.clearSamples = std::move(v->clearSamples);
+  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0, {}};
+  e = estimateFromSamples(std::move(*v));
   e.tube = store(std::move(list));
   return e;
 }
