@@ -7,29 +7,16 @@
 #include <vector>
 
 #include "report/run_files.h"
+#include "support/howell_pair.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
 
 namespace gv {
 namespace {
 
-std::filesystem::path writePair(const std::filesystem::path& dir) {
-  test::writeFile(dir / "pair.mtl",
-                  "newmtl grey\nKd 0.6 0.6 0.6\nKe 0 0 0\n"
-                  "newmtl light\nKd 0 0 0\nKe 3 2 1\n");
-  // Receiver: unit square at z = 0 facing up. Emitter: unit square at z = 1 facing down.
-  test::writeFile(dir / "pair.obj",
-                  "mtllib pair.mtl\n"
-                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                  "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                  "usemtl grey\nf 1 2 3 4\n"
-                  "usemtl light\nf 5 8 7 6\n");
-  return dir / "pair.obj";
-}
-
 TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
   const auto dir = test::scratchDir();
-  const auto scene = writePair(dir);
+  const auto scene = test::writeHowellPair(dir);
   const auto run = dir / "run", ref = dir / "ref";
   ASSERT_EQ(
       test::runCli("radiosity '" + scene.string() + "' -o '" + run.string() + "' -q --no-pictures")
@@ -44,7 +31,7 @@ TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
   // Both files have radiosity.txt's format, so the report module's reader takes them.
   const std::vector<Rgb> b = readRadiosityTxt((ref / "radiosity.txt").string(), 2);
   const std::vector<Rgb> e = readRadiosityTxt((ref / "standard_error.txt").string(), 2);
-  const double expected = 0.6 * 3 * 0.19982;  // ρ E F, F from Howell C-11 (X = Y = 1)
+  const double expected = 0.6 * 3 * test::kHowellC11;  // ρ E F, F from Howell C-11 (X = Y = 1)
   EXPECT_NEAR(b[0].r, expected, 4 * e[0].r);
   EXPECT_LT(e[0].r, 0.01 * expected);
   EXPECT_EQ(b[1].r, 3);  // the emitter reflects nothing: B = E exactly
@@ -57,12 +44,12 @@ TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
 
 TEST(PhotonsCliTest, ComparisonBeyondToleranceExitsOne) {
   const auto dir = test::scratchDir();
-  const auto scene = writePair(dir);
+  const auto scene = test::writeHowellPair(dir);
   // A "run" that is 10 % too bright on the receiver.
   std::filesystem::create_directories(dir / "bright");
   test::writeFile(
       dir / "bright" / "radiosity.txt",
-      "# made up\n0 " + std::to_string(1.1 * 0.6 * 3 * 0.19982) + " 0.1 0.1\n1 3 2 1\n");
+      "# made up\n0 " + std::to_string(1.1 * 0.6 * 3 * test::kHowellC11) + " 0.1 0.1\n1 3 2 1\n");
   const test::CliResult r =
       test::runCli("photons '" + scene.string() + "' -o '" + (dir / "ref").string() +
                    "' --photons 100000 --compare '" + (dir / "bright").string() + "'");
@@ -71,7 +58,7 @@ TEST(PhotonsCliTest, ComparisonBeyondToleranceExitsOne) {
 
 TEST(PhotonsCliTest, BadInputIsNamed) {
   const auto dir = test::scratchDir();
-  const auto scene = writePair(dir);
+  const auto scene = test::writeHowellPair(dir);
   const test::CliResult missing = test::runCli("photons '" + (dir / "nope.obj").string() +
                                                "' -o '" + (dir / "o").string() + "'");
   EXPECT_EQ(missing.exitCode, 2) << missing.output;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "support/howell_pair.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
 
@@ -14,20 +15,11 @@ namespace {
 
 TEST(RadiosityCliTest, EmitterOverReceiverGivesRhoEF) {
   const auto dir = test::scratchDir();
-  test::writeFile(dir / "pair.mtl",
-                  "newmtl grey\nKd 0.6 0.6 0.6\nKe 0 0 0\n"
-                  "newmtl light\nKd 0 0 0\nKe 3 2 1\n");
-  // Receiver: unit square at z = 0 facing up. Emitter: unit square at z = 1 facing down.
-  test::writeFile(dir / "pair.obj",
-                  "mtllib pair.mtl\n"
-                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
-                  "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
-                  "usemtl grey\nf 1 2 3 4\n"
-                  "usemtl light\nf 5 8 7 6\n");
+  const auto scene = test::writeHowellPair(dir);
   for (const std::string mode : {"rays", "shaft"}) {
     SCOPED_TRACE(mode);
     const auto out = dir / ("out_" + mode);
-    const test::CliResult r = test::runCli("radiosity '" + (dir / "pair.obj").string() + "' -o '" +
+    const test::CliResult r = test::runCli("radiosity '" + scene.string() + "' -o '" +
                                            out.string() + "' -q --visibility " + mode);
     ASSERT_EQ(r.exitCode, 0) << r.output;
 
@@ -45,7 +37,7 @@ TEST(RadiosityCliTest, EmitterOverReceiverGivesRhoEF) {
       rows.push_back(c);
     }
     ASSERT_EQ(rows.size(), 2u);
-    const double f = 0.19982;  // Howell C-11, X = Y = 1
+    const double f = test::kHowellC11;
     const double rho = 0.6;
     EXPECT_NEAR(rows[0][0], rho * 3 * f, 0.02 * rho * 3 * f);
     EXPECT_NEAR(rows[0][1], rho * 2 * f, 0.02 * rho * 2 * f);
