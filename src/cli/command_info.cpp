@@ -18,6 +18,8 @@ nlohmann::json infoJson(const std::string& path, const Scene& s) {
           {"dropped_degenerate", r.droppedDegenerate},
           {"split_non_convex", r.splitNonConvex},
           {"triangulated_non_planar", r.triangulatedNonPlanar},
+          {"split_at_contacts", r.splitAtContacts},
+          {"contact_pieces", r.contactPieces},
           {"materials", s.materials.size()},
           {"emitters", s.emitterCount()},
           {"bounds_min", {box.lo.x, box.lo.y, box.lo.z}},
@@ -35,6 +37,8 @@ void printInfo(const std::string& path, const Scene& s) {
   fmt::print("faces in     {}\n", r.facesIn);
   fmt::print("patches      {}  (non-convex faces split: {}, non-planar faces triangulated: {})\n",
              s.patches.size(), r.splitNonConvex, r.triangulatedNonPlanar);
+  fmt::print("contacts     {} patches cut along patches resting on them, into {} pieces\n",
+             r.splitAtContacts, r.contactPieces);
   fmt::print("dropped      {} degenerate faces\n", r.droppedDegenerate);
   fmt::print("materials    {}\n", s.materials.size());
   fmt::print("emitters     {} patches\n", s.emitterCount());
@@ -46,11 +50,15 @@ void printInfo(const std::string& path, const Scene& s) {
 }  // namespace
 
 Action addInfoCommand(CLI::App& app) {
-  auto* cmd = app.add_subcommand("info", "Print a scene's counts: faces in, patches out, dropped "
-                                         "faces, emitters, bounding box, total area");
+  auto* cmd = app.add_subcommand("info",
+                                 "Print a scene's counts: faces in, patches out, dropped "
+                                 "faces, emitters, bounding box, total area");
   auto path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("scene", *path, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
+  cmd->add_option(
+         "scene", *path,
+         "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")
+      ->required();
   cmd->add_flag("--json", *json, "Print JSON instead of text");
   return [path, json] {
     const Scene scene = loadScene(*path);

@@ -13,6 +13,7 @@
 #include "radiosity/radiosity_io.h"
 #include "raycast/embree_scene.h"
 #include "report/run_files.h"
+#include "scene/contact_split.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 #include "util/timing.h"
@@ -29,7 +30,7 @@ Action addPhotonsCommand(CLI::App& app) {
     std::string scene, output, compare;
     PhotonOptions options;
     double sigmas = 4, allowance = 0.01;
-    bool json = false;
+    bool json = false, noContactSplit = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("scene", s->scene, "Scene file (as `globalvis radiosity` reads it)")->required();
@@ -56,8 +57,14 @@ Action addPhotonsCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
+  cmd->add_flag("--no-contact-split", s->noContactSplit,
+                "Keep the patches whole (as `globalvis radiosity --no-contact-split`)");
   return [s] {
-    const Scene scene = loadScene(s->scene);
+    const Scene scene = [&] {
+      Scene loaded = loadScene(s->scene);
+      if (!s->noContactSplit) splitPatchesAtContacts(loaded);
+      return loaded;
+    }();
     if (scene.patches.empty()) throw InputError(s->scene, 0, "the scene has no patches");
     // Read the run to compare before the long work, so that a bad directory fails at once.
     std::vector<Rgb> solver;

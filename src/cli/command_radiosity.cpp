@@ -17,6 +17,7 @@
 #include "radiosity/shaft_visibility.h"
 #include "raycast/embree_scene.h"
 #include "render/radiosity_pictures.h"
+#include "scene/contact_split.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 #include "util/progress_bar.h"
@@ -36,12 +37,14 @@ Action addRadiosityCommand(CLI::App& app) {
     bool quiet = false, json = false;
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
-    bool noPictures = false, flat = false;
+    bool noPictures = false, flat = false, noContactSplit = false;
     BspOptions bsp;  // blockers mode: the subdivision its visibility graph is computed on
   };
   auto s = std::make_shared<State>();
   s->bsp.minCoverage = kVisibilityMinCoverage;  // the same cells as `vis`
-  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl: Kd reflectance, Ke emission; or a Quake .map, or a mesh Assimp reads)")
+  cmd->add_option("scene", s->scene,
+                  "Scene file (.obj with .mtl: Kd reflectance, Ke emission; or a Quake .map, or a "
+                  "mesh Assimp reads)")
       ->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--visibility", s->visibility,
@@ -53,6 +56,9 @@ Action addRadiosityCommand(CLI::App& app) {
                   "refinement, rays only for PARTIAL links and only against their blockers "
                   "(paper §6)")
       ->check(CLI::IsMember({"rays", "shaft", "blockers"}));
+  cmd->add_flag("--no-contact-split", s->noContactSplit,
+                "Keep the patches whole instead of cutting them along the outlines of the patches "
+                "resting on them or hanging just in front (scene/contact_split.h)");
   cmd->add_option("--min-coverage", s->bsp.minCoverage,
                   "blockers mode: BSP stop rule (see `globalvis cells --help`)")
       ->capture_default_str()
@@ -84,7 +90,11 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s] {
-    const Scene scene = loadScene(s->scene);
+    const Scene scene = [&] {
+      Scene loaded = loadScene(s->scene);
+      if (!s->noContactSplit) splitPatchesAtContacts(loaded);
+      return loaded;
+    }();
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     // Progress (a bar per refinement round, a line per round) only on a terminal.
     const bool progress = !s->quiet && stderrIsTerminal();

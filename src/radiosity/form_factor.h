@@ -62,7 +62,8 @@ double formFactor(const ConvexPolygon& a, const ConvexPolygon& b, const Toleranc
 /// formFactor with an error bound for hierarchical radiosity. A link hands each receiving element
 /// the *mean* of the point form factor over it; what that misses is how much the point form
 /// factor varies across the receiver. `variationA` is max - min of F(dA_x → b) over sample points
-/// x of a (its vertices pulled 1 % towards its centroid, and the centroid; 0 counts as a sample
+/// x of a (its vertices pulled 1 % towards its centroid, the centroid, and a's point nearest to
+/// b's centroid, pulled the same way; 0 counts as a sample
 /// where part of a is clipped away behind b), `variationB` the same for F(dA_y → a) over b.
 struct FormFactorEstimate {
   double ab = 0;          ///< F(a → b), as formFactor

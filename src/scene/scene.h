@@ -41,6 +41,8 @@ struct ImportReport {
   size_t droppedDegenerate = 0;   ///< zero area, repeated or collinear vertices
   size_t splitNonConvex = 0;      ///< planar non-convex faces decomposed into convex pieces
   size_t triangulatedNonPlanar = 0;  ///< faces beyond the planarity tolerance, triangulated
+  size_t splitAtContacts = 0;  ///< patches cut along the outlines of patches resting on them
+  size_t contactPieces = 0;    ///< the pieces those patches became (scene/contact_split.h)
   std::vector<std::string> warnings;
 };
 
