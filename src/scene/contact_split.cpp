@@ -3,10 +3,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
+#include <optional>
+#include <unordered_map>
 
 namespace gv {
 namespace {
+
+/// A merged polygon may turn by at most this (the sine of the angle) the wrong way at a vertex:
+/// rounding of cut points, far below anything that makes a polygon visibly non-convex.
+constexpr double kMergeConvexity = 1e-9;
 
 /// Twice the area over the longest edge: the polygon's narrowest extent, up to a factor 2.
 double width(const ConvexPolygon& p) {
@@ -109,6 +116,95 @@ bool boxesOverlap(const Aabb& a, const Aabb& b, double eps) {
   return true;
 }
 
+/// The union of convex polygons x and y when they share a whole edge (y's runs the other way)
+/// and the union is convex; nullopt otherwise.
+std::optional<ConvexPolygon> mergeAlongEdge(const ConvexPolygon& x, const ConvexPolygon& y,
+                                            const Tolerance& tol) {
+  const size_t n = x.vertices.size(), m = y.vertices.size();
+  const double eps = tol.length();
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3& a = x.vertices[i];
+    const Vec3& b = x.vertices[(i + 1) % n];
+    for (size_t j = 0; j < m; ++j) {
+      if (distance(y.vertices[j], b) > eps || distance(y.vertices[(j + 1) % m], a) > eps) continue;
+      std::vector<Vec3> v;
+      for (size_t k = 0; k < n; ++k) v.push_back(x.vertices[(i + 1 + k) % n]);  // b .. a
+      for (size_t k = 0; k + 2 < m; ++k) v.push_back(y.vertices[(j + 2 + k) % m]);
+      for (size_t k = 0; k < v.size(); ++k) {
+        const Vec3 e1 = v[(k + 1) % v.size()] - v[k];
+        const Vec3 e2 = v[(k + 2) % v.size()] - v[(k + 1) % v.size()];
+        if (dot(cross(e1, e2), x.plane.normal) < -kMergeConvexity * length(e1) * length(e2))
+          return std::nullopt;
+      }
+      return ConvexPolygon::fromVerticesInPlane(std::move(v), x.plane, tol);
+    }
+  }
+  return std::nullopt;
+}
+
+/// Merges pieces that lie under the same shadows (by their centroids against the `outlines`,
+/// whose boxes are `reaches`)
+/// where two share a whole edge and their union is convex, until no two do. Cutting along one
+/// outline after another runs each cut across the whole piece it meets (a wall's footprint cuts
+/// the storey's slab from end to end), so the open floor comes out in strips that merging
+/// joins back into rooms.
+void mergePieces(std::vector<ConvexPolygon>& pieces,
+                 const std::vector<std::vector<Plane>>& outlines, const std::vector<Aabb>& reaches,
+                 const Tolerance& tol) {
+  std::vector<std::vector<uint32_t>> under(pieces.size());
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    const Vec3 c = pieces[i].centroid();
+    for (uint32_t o = 0; o < outlines.size(); ++o) {
+      if (!boxesOverlap(Aabb{c, c}, reaches[o], 0)) continue;
+      bool inside = true;
+      for (const Plane& plane : outlines[o]) inside = inside && plane.distance(c) <= 0;
+      if (inside) under[i].push_back(o);
+    }
+  }
+  // Candidates: pieces with an edge running the other way between the same two points (the two
+  // sides of one cut carry bit-identical cut points).
+  const auto key = [](const Vec3& a, const Vec3& b) {
+    uint64_t h = 1469598103934665603ull;
+    for (const double d : {a.x, a.y, a.z, b.x, b.y, b.z}) {
+      uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      h = (h ^ bits) * 1099511628211ull;
+    }
+    return h;
+  };
+  std::vector<bool> alive(pieces.size(), true);
+  for (bool merged = true; merged;) {
+    merged = false;
+    std::unordered_multimap<uint64_t, size_t> edges;
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      if (!alive[i]) continue;
+      const auto& v = pieces[i].vertices;
+      for (size_t k = 0; k < v.size(); ++k) edges.emplace(key(v[k], v[(k + 1) % v.size()]), i);
+    }
+    for (size_t i = 0; i < pieces.size(); ++i) {
+      for (size_t k = 0; alive[i] && k < pieces[i].vertices.size(); ++k) {
+        const auto& v = pieces[i].vertices;
+        const auto [lo, hi] = edges.equal_range(key(v[(k + 1) % v.size()], v[k]));
+        for (auto it = lo; it != hi; ++it) {
+          const size_t j = it->second;
+          if (j == i || !alive[j] || under[j] != under[i]) continue;
+          std::optional<ConvexPolygon> u = mergeAlongEdge(pieces[i], pieces[j], tol);
+          if (!u) continue;
+          pieces[i] = std::move(*u);
+          alive[j] = false;
+          merged = true;
+          k = static_cast<size_t>(-1);  // piece i changed: look at its new edges from the start
+          break;
+        }
+      }
+    }
+  }
+  std::vector<ConvexPolygon> kept;
+  for (size_t i = 0; i < pieces.size(); ++i)
+    if (alive[i]) kept.push_back(std::move(pieces[i]));
+  pieces = std::move(kept);
+}
+
 }  // namespace
 
 ContactSplitReport splitPatchesAtContacts(Scene& scene) {
@@ -122,26 +218,38 @@ ContactSplitReport splitPatchesAtContacts(Scene& scene) {
   for (size_t p = 0; p < scene.patches.size(); ++p) {
     const Patch& patch = scene.patches[p];
     std::vector<ConvexPolygon> pieces{patch.polygon};
+    std::vector<Aabb> boxes{patch.polygon.bounds()};
+    std::vector<std::vector<Plane>> outlines;
+    std::vector<Aabb> reaches;
     for (uint32_t q : shadowsOf[p]) {
       const ConvexPolygon& caster = scene.patches[q].polygon;
-      const std::vector<Plane> planes = outlinePlanes(caster, patch.polygon.plane);
+      outlines.push_back(outlinePlanes(caster, patch.polygon.plane));
+      const std::vector<Plane>& planes = outlines.back();
       // q's outline projected onto p's plane has q's in-plane extent: its box grown along
       // p's normal by the gap meets every piece q overlaps.
       Aabb reach = caster.bounds();
       const double gap = maxGap(caster) + tol.planeOffset();
       reach.lo = reach.lo - gap * Vec3{1, 1, 1};
       reach.hi = reach.hi + gap * Vec3{1, 1, 1};
-      std::vector<ConvexPolygon> next;
-      for (ConvexPolygon& x : pieces) {
-        if (!boxesOverlap(x.bounds(), reach, tol.length())) {
-          next.push_back(std::move(x));
-          continue;
+      reaches.push_back(reach);
+      // Pieces are cut in place: the first part keeps the slot, the others are appended.
+      for (size_t i = 0, n = pieces.size(); i < n; ++i) {
+        if (!boxesOverlap(boxes[i], reach, tol.length())) continue;
+        std::vector<ConvexPolygon> cut = cutAlongOutline(pieces[i], planes, minWidth, tol);
+        if (cut.size() == 1) continue;
+        for (size_t k = 0; k < cut.size(); ++k) {
+          const Aabb box = cut[k].bounds();
+          if (k == 0) {
+            pieces[i] = std::move(cut[k]);
+            boxes[i] = box;
+          } else {
+            pieces.push_back(std::move(cut[k]));
+            boxes.push_back(box);
+          }
         }
-        for (ConvexPolygon& y : cutAlongOutline(x, planes, minWidth, tol))
-          next.push_back(std::move(y));
       }
-      pieces = std::move(next);
     }
+    if (pieces.size() > 1) mergePieces(pieces, outlines, reaches, tol);
     if (pieces.size() > 1) {
       ++report.patchesSplit;
       report.piecesMade += pieces.size();

@@ -125,6 +125,56 @@ TEST(ContactSplit, NothingBehindOrTiltedOrAlreadyFollowingTheOutlineIsCut) {
   EXPECT_EQ(scene.patches.size(), 4u);
 }
 
+TEST(ContactSplit, StripsUnderNoShadowAreMergedBack) {
+  // Two boxes on a floor: cutting along the second box's outline runs across pieces the first
+  // one made. Afterwards no two pieces under the same shadows may share a whole edge with a
+  // convex union (checked here by brute force), and the tiling is still exact.
+  Scene scene = floorScene();
+  SceneBuilder b = builder(scene);
+  b.addAxisRect(2, true, {0, 0, 0}, {10, 10, 0}, kFloor);
+  b.addBox({2, 2, 0}, {3, 3, 1}, kBox);
+  b.addBox({7, 6, 0}, {8, 8, 1}, kBox);
+  splitPatchesAtContacts(scene);
+  const auto floor = withMaterial(scene, kFloor);
+  expectTiling(floor, 0, 10, 0, 10, 0);
+  const auto coverage = [](const ConvexPolygon& p) {
+    const Vec3 c = p.centroid();
+    return std::pair<bool, bool>{c.x > 2 && c.x < 3 && c.y > 2 && c.y<3, c.x> 7 && c.x < 8 &&
+                                 c.y > 6 && c.y < 8};
+  };
+  for (size_t i = 0; i < floor.size(); ++i) {
+    EXPECT_TRUE(insideOrOutside(floor[i]->polygon, 2, 3, 2, 3));
+    EXPECT_TRUE(insideOrOutside(floor[i]->polygon, 7, 8, 6, 8));
+    for (size_t j = i + 1; j < floor.size(); ++j) {
+      const ConvexPolygon& x = floor[i]->polygon;
+      const ConvexPolygon& y = floor[j]->polygon;
+      if (coverage(x) != coverage(y)) continue;
+      // A shared whole edge with a convex union: the union's area equals the hull's.
+      for (size_t k = 0; k < x.vertices.size(); ++k)
+        for (size_t l = 0; l < y.vertices.size(); ++l) {
+          const Vec3& a = x.vertices[k];
+          const Vec3& bb = x.vertices[(k + 1) % x.vertices.size()];
+          if (length(y.vertices[l] - bb) > 1e-9 ||
+              length(y.vertices[(l + 1) % y.vertices.size()] - a) > 1e-9)
+            continue;
+          // The edge a-b is shared: the union is convex iff no vertex of either lies beyond
+          // the lines through the other's edges that meet a or b; test it by turning at a, b.
+          const auto turn = [](const Vec3& p, const Vec3& q, const Vec3& r) {
+            return cross(q - p, r - q).z;
+          };
+          const Vec3& xPrev = x.vertices[(k + x.vertices.size() - 1) % x.vertices.size()];
+          const Vec3& xNext = x.vertices[(k + 2) % x.vertices.size()];
+          const Vec3& yNext = y.vertices[(l + 2) % y.vertices.size()];
+          const Vec3& yPrev = y.vertices[(l + y.vertices.size() - 1) % y.vertices.size()];
+          const bool convexAtA = turn(xPrev, a, yNext) >= -1e-12;
+          const bool convexAtB = turn(yPrev, bb, xNext) >= -1e-12;
+          EXPECT_FALSE(convexAtA && convexAtB) << "pieces " << i << " and " << j << " could merge";
+        }
+    }
+  }
+  EXPECT_LE(floor.size(), 11u);  // 4 + 4 around the footprints (at most) + 2 under + 1 between
+}
+
 TEST(ContactSplit, NoSliverIsCutOff) {
   Scene scene = floorScene();
   SceneBuilder b = builder(scene);
