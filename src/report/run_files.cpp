@@ -39,6 +39,9 @@ RunFiles findRunFiles(const fs::path& dir) {
   f.portalsObj = firstExisting(dir, {"cells"}, "portals.obj");
   f.radiosityTxt = firstExisting(dir, {"radiosity"}, "radiosity.txt");
   f.elementsPly = firstExisting(dir, {"radiosity"}, "elements.ply");
+  if (fs::is_regular_file(dir / "radiosity" / "patches.obj") &&
+      f.patchesObj != dir / "radiosity" / "patches.obj")
+    f.radiosityPatchesObj = dir / "radiosity" / "patches.obj";
   // stats.json has one name for three stages: only the subfolder layout tells them apart.
   for (auto [sub, out] : {std::pair{"cells", &f.cellsStats}, std::pair{"vis", &f.visStats},
                           std::pair{"radiosity", &f.radiosityStats}})

@@ -24,6 +24,9 @@ struct RunFiles {
   std::filesystem::path visibilityTxt;
   std::filesystem::path cellsObj, portalsObj;
   std::filesystem::path radiosityTxt, elementsPly;
+  /// The patches radiosity.txt is per patch of (radiosity/patches.obj, cut along contacts), when
+  /// it is not `patchesObj`.
+  std::filesystem::path radiosityPatchesObj;
   std::filesystem::path cellsStats, visStats, radiosityStats;  ///< each stage's stats.json
 };
 

@@ -2,7 +2,9 @@
 #include "report/viewer_data.h"
 
 #include <cmath>
+#include <optional>
 
+#include "report/piece_radiosity.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 #include "visibility/visibility_graph.h"
@@ -119,14 +121,28 @@ json viewerDataJson(const RunFiles& files, const std::string& title,
   data["radiosity"] = nullptr;
   data["elements"] = nullptr;
   if (!files.radiosityTxt.empty()) {
-    json flat = json::array();
-    for (const Rgb& b : readRadiosityTxt(files.radiosityTxt.string(), scene.patches.size())) {
-      flat.push_back(b.r);
-      flat.push_back(b.g);
-      flat.push_back(b.b);
+    std::optional<std::vector<Rgb>> perPatch;
+    if (files.radiosityPatchesObj.empty()) {
+      perPatch = readRadiosityTxt(files.radiosityTxt.string(), scene.patches.size());
+    } else {
+      // radiosity.txt is per patch of the radiosity run's own patches (cut along contacts).
+      const Scene pieces = importObj(files.radiosityPatchesObj.string());
+      perPatch = radiosityOnPatches(
+          scene, pieces, readRadiosityTxt(files.radiosityTxt.string(), pieces.patches.size()));
+      if (!perPatch)
+        data["notes"].push_back(files.radiosityPatchesObj.string() + " is not " + patchesPath +
+                                " cut into pieces: radiosity.txt is not shown per patch");
     }
-    data["radiosity"] = std::move(flat);
-    data["sources"]["radiosity"] = files.radiosityTxt.string();
+    if (perPatch) {
+      json flat = json::array();
+      for (const Rgb& b : *perPatch) {
+        flat.push_back(b.r);
+        flat.push_back(b.g);
+        flat.push_back(b.b);
+      }
+      data["radiosity"] = std::move(flat);
+      data["sources"]["radiosity"] = files.radiosityTxt.string();
+    }
   }
   if (!files.elementsPly.empty()) {
     const ElementMesh mesh = readElementsPly(files.elementsPly.string());
