@@ -14,6 +14,7 @@
 #include "scene/scene_io.h"
 #include "util/progress_bar.h"
 #include "visibility/propagation.h"
+#include "visibility/visibility_graph.h"
 
 namespace gv::cli {
 
@@ -51,12 +52,22 @@ Action addVisCommand(CLI::App& app) {
     s->propagation.progress = visBar.callback();
     ProgressBar blockerBar("blocker lists (per source patch)");
     s->propagation.blockerProgress = blockerBar.callback();
+    // visibility.txt is written while the blocker lists are built (they need not fit in memory),
+    // under a temporary name until complete: a failed run leaves no truncated (or stale)
+    // visibility.txt.
+    const std::filesystem::path dir = makeOutputDirectory(s->output);
+    const std::filesystem::path visPath = dir / "visibility.txt";
+    const std::filesystem::path partPath = dir / "visibility.txt.part";
+    std::filesystem::remove(visPath);
+    VisibilityTxtWriter writer(partPath.string());
+    s->propagation.interactionSink = [&writer](std::span<const Interaction> interactions) {
+      for (const Interaction& in : interactions) writer.add(in);
+    };
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
     visBar.finish();
-
-    const std::filesystem::path dir = makeOutputDirectory(s->output);
+    writer.close();
+    std::filesystem::rename(partPath, visPath);
     writeObj(scene, (dir / "patches.obj").string());
-    writeVisibilityTxt(graph, (dir / "visibility.txt").string());
     const nlohmann::json stats = {{"scene", s->scene},
                                   {"subdivision", statsJson(sub.stats)},
                                   {"visibility", visibilityStatsJson(graph.stats)}};

@@ -16,6 +16,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -37,6 +39,13 @@
 
 namespace gv {
 namespace {
+
+/// Blocker lists are built for this many consecutive sources at a time (one pipeline token):
+/// small enough that a chunk's lists are little memory, large enough to amortise the hand-over.
+constexpr size_t kSourcesPerChunk = 8;
+/// Chunks in flight per thread: room for threads to work ahead of a slow chunk (a source with
+/// huge lists) that holds up the in-order hand-over.
+constexpr size_t kChunksInFlightPerThread = 4;
 
 /// Above this many bits of per-directed-portal cell sets (2 x portals x cells; 2^32 bits =
 /// 512 MiB) the leaf-PVS cell search is not used.
@@ -640,86 +649,118 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     std::vector<uint32_t> candidates, blockers;
     std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
   };
-  std::vector<std::vector<Interaction>> perSource(n);
-  std::atomic<size_t> sourcesDone{0};
-  std::mutex blockerProgressMutex;
-  size_t sourcesReported = 0;
-  parallelFor(
-      n, threads,
-      [&] {
-        return BlockerWorker{
-            std::vector<uint8_t>(n, 0), {}, {}, std::vector<uint64_t>((n + 63) / 64, 0)};
-      },
-      [&](BlockerWorker& w, size_t si) {
-        if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
-          throw PropagationDeadlineExceeded();
-        if (options.blockerProgress) {
-          const size_t d = sourcesDone.load();
-          if (d % 64 == 0) {
-            std::lock_guard lock(blockerProgressMutex);
-            if (d > sourcesReported) options.blockerProgress(sourcesReported = d, n);
+  // The interactions of source s (pairs (s, t), t > s, in t order) with their blocker lists.
+  // Counts for the statistics go to `chunk`.
+  struct Chunk {
+    size_t begin = 0, end = 0;  ///< sources [begin, end)
+    std::vector<Interaction> interactions;
+    uint64_t visible = 0, partial = 0, blockerSum = 0, sameCell = 0;
+  };
+  auto blockersOf = [&](BlockerWorker& w, uint32_t s, Chunk& chunk) {
+    const ConvexPolygon& sp = scene.patches[s].polygon;
+    for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
+    for (uint32_t e : seen[s].seen) {
+      const uint32_t t = seenPatch(e);
+      const uint8_t f = seenFlags(e);
+      if (t <= s) continue;
+      // Both searches are conservative and a sightline runs both ways, so a real pair is seen
+      // front to front from each end: requiring both is exact pruning, not a guess.
+      const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
+      const ConvexPolygon& tp = scene.patches[t].polygon;
+      if (!front || !canFace(sp, tp, tol.length())) continue;
+      Interaction in{s, t, {}};
+      if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
+        ++chunk.sameCell;
+      } else {
+        const PairHull hull(sp, tp, tol);
+        Aabb box = patchBoxes[s];
+        box.add(patchBoxes[t]);
+        w.candidates.clear();
+        // The slack is PairHull's box tolerance: the grid does PairHull's box test.
+        grid.gather(box, tol.length(), w.candidates);
+        const auto& b = seen[t].seen;
+        auto fromT = b.begin();  // candidates rise: each search starts where the last ended
+        w.blockers.clear();
+        sortIds(w.candidates, w.bits);  // blockers come out sorted
+        for (uint32_t c : w.candidates) {
+          if (c == s || c == t) continue;
+          if (!w.seenFromS[c]) {
+            fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
+            if (fromT == b.end() || seenPatch(*fromT) != c) continue;
           }
+          const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
+                                         vertices.data() + vertexStart[c + 1]);
+          if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal)) w.blockers.push_back(c);
         }
-        const auto s = static_cast<uint32_t>(si);
-        const ConvexPolygon& sp = scene.patches[s].polygon;
-        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
-        for (uint32_t e : seen[s].seen) {
-          const uint32_t t = seenPatch(e);
-          const uint8_t f = seenFlags(e);
-          if (t <= s) continue;
-          // Both searches are conservative and a sightline runs both ways, so a real pair is seen
-          // front to front from each end: requiring both is exact pruning, not a guess.
-          const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
-          const ConvexPolygon& tp = scene.patches[t].polygon;
-          if (!front || !canFace(sp, tp, tol.length())) continue;
-          Interaction in{s, t, {}};
-          if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
-            const PairHull hull(sp, tp, tol);
-            Aabb box = patchBoxes[s];
-            box.add(patchBoxes[t]);
-            w.candidates.clear();
-            // The slack is PairHull's box tolerance: the grid does PairHull's box test.
-            grid.gather(box, tol.length(), w.candidates);
-            const auto& b = seen[t].seen;
-            auto fromT = b.begin();  // candidates rise: each search starts where the last ended
-            w.blockers.clear();
-            sortIds(w.candidates, w.bits);  // blockers come out sorted
-            for (uint32_t c : w.candidates) {
-              if (c == s || c == t) continue;
-              if (!w.seenFromS[c]) {
-                fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
-                if (fromT == b.end() || seenPatch(*fromT) != c) continue;
-              }
-              const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
-                                             vertices.data() + vertexStart[c + 1]);
-              if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal))
-                w.blockers.push_back(c);
-            }
-            // Exactly sized: blocker lists are most of the memory on big scenes.
-            in.blockers.assign(w.blockers.begin(), w.blockers.end());
-          }
-          perSource[s].push_back(std::move(in));
-        }
-        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
-        ++sourcesDone;
-      });
-  if (options.blockerProgress) options.blockerProgress(n, n);
-  size_t interactions = 0;
-  for (const auto& v : perSource) interactions += v.size();
-  graph.interactions.reserve(interactions);
-  for (auto& v : perSource) {
-    for (Interaction& in : v) graph.interactions.push_back(std::move(in));
-    std::vector<Interaction>().swap(v);
-  }
-  uint64_t blockerSum = 0;
-  for (const Interaction& in : graph.interactions) {
-    if (in.blockers.empty()) {
-      ++st.pairsVisible;
-    } else {
-      ++st.pairsPartial;
-      blockerSum += in.blockers.size();
+        // Exactly sized: the lists in flight are most of the memory on big scenes.
+        in.blockers.assign(w.blockers.begin(), w.blockers.end());
+      }
+      if (in.blockers.empty()) {
+        ++chunk.visible;
+      } else {
+        ++chunk.partial;
+        chunk.blockerSum += in.blockers.size();
+      }
+      chunk.interactions.push_back(std::move(in));
     }
-    st.sameCellShortcuts += in.blockers.empty() && (isSameCellVisible(in.s, in.r) || isSameCellVisible(in.r, in.s));
+    for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
+  };
+  // Sources in chunks through a pipeline: chunks are worked on in parallel and handed on (to
+  // the sink or into the graph) one at a time in source order, so the output is (s, r) sorted
+  // whatever the schedule, and with a sink only the chunks in flight are held.
+  tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers([n] {
+    return BlockerWorker{std::vector<uint8_t>(n, 0), {}, {},
+                         std::vector<uint64_t>((n + 63) / 64, 0)};
+  });
+  std::vector<std::pair<uint32_t, uint32_t>> partialPairs;  // in order, for the shaft sample
+  uint64_t blockerSum = 0;
+  size_t nextSource = 0;
+  using ChunkPtr = std::shared_ptr<Chunk>;
+  {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_pipeline(
+          kChunksInFlightPerThread * size_t(threads),
+          tbb::make_filter<void, ChunkPtr>(
+              tbb::filter_mode::serial_in_order,
+              [&](tbb::flow_control& fc) -> ChunkPtr {
+                if (nextSource >= n) {
+                  fc.stop();
+                  return nullptr;
+                }
+                auto chunk = std::make_shared<Chunk>();
+                chunk->begin = nextSource;
+                chunk->end = nextSource = std::min(n, nextSource + kSourcesPerChunk);
+                return chunk;
+              }) &
+              tbb::make_filter<ChunkPtr, ChunkPtr>(
+                  tbb::filter_mode::parallel,
+                  [&](ChunkPtr chunk) {
+                    if (options.deadline != Clock::time_point::max() &&
+                        Clock::now() > options.deadline)
+                      throw PropagationDeadlineExceeded();
+                    BlockerWorker& w = blockerWorkers.local();
+                    for (size_t s = chunk->begin; s < chunk->end; ++s)
+                      blockersOf(w, static_cast<uint32_t>(s), *chunk);
+                    return chunk;
+                  }) &
+              tbb::make_filter<ChunkPtr, void>(
+                  tbb::filter_mode::serial_in_order, [&](ChunkPtr chunk) {
+                    st.pairsVisible += chunk->visible;
+                    st.pairsPartial += chunk->partial;
+                    st.sameCellShortcuts += chunk->sameCell;
+                    blockerSum += chunk->blockerSum;
+                    for (const Interaction& in : chunk->interactions)
+                      if (!in.blockers.empty()) partialPairs.emplace_back(in.s, in.r);
+                    if (options.interactionSink) {
+                      options.interactionSink(chunk->interactions);
+                    } else {
+                      for (Interaction& in : chunk->interactions)
+                        graph.interactions.push_back(std::move(in));
+                    }
+                    if (options.blockerProgress) options.blockerProgress(chunk->end, n);
+                  }));
+    });
   }
   st.meanBlockersPerPartial = st.pairsPartial ? double(blockerSum) / double(st.pairsPartial) : 0;
   st.blockerSeconds = secondsSince(blockerStart);
@@ -728,11 +769,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   if (st.pairsPartial > 0 && options.shaftSamples > 0) {
     const uint64_t stride = std::max<uint64_t>(1, st.pairsPartial / options.shaftSamples);
     uint64_t k = 0, sum = 0;
-    for (const Interaction& in : graph.interactions) {
-      if (in.blockers.empty() || (k++ % stride) != 0) continue;
-      const PairHull hull(scene.patches[in.s].polygon, scene.patches[in.r].polygon, tol);
+    for (const auto& [ps, pr] : partialPairs) {
+      if ((k++ % stride) != 0) continue;
+      const PairHull hull(scene.patches[ps].polygon, scene.patches[pr].polygon, tol);
       for (uint32_t c = 0; c < n; ++c)
-        if (c != in.s && c != in.r && hull.meets(scene.patches[c].polygon, patchBoxes[c])) ++sum;
+        if (c != ps && c != pr && hull.meets(scene.patches[c].polygon, patchBoxes[c])) ++sum;
       ++st.shaftSamples;
     }
     st.meanShaftCullPerPartial = double(sum) / double(st.shaftSamples);

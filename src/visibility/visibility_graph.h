@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,28 @@ struct VisibilityGraph {
 
 /// Writes `visibility.txt` in the paper's format (DESIGN.md contract): `S R n b1 ... bn`.
 void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path);
+
+/// visibility.txt written as it is produced: the header when constructed, one line per add() in
+/// the order given (the contract's (s, r) order is the caller's), the rest on close(). Lets
+/// `globalvis vis` write the blocker lists without holding them all (PropagationOptions::
+/// interactionSink). Errors (open, write) throw InputError(path, 0, ...).
+class VisibilityTxtWriter {
+ public:
+  explicit VisibilityTxtWriter(const std::string& path);
+  ~VisibilityTxtWriter();
+  VisibilityTxtWriter(const VisibilityTxtWriter&) = delete;
+  VisibilityTxtWriter& operator=(const VisibilityTxtWriter&) = delete;
+  void add(const Interaction& in);
+  /// Flushes and closes the file; throws if any write failed. Idempotent.
+  void close();
+
+ private:
+  void put(uint64_t v, char after);
+  void flush();
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  std::string buffer_;
+};
 /// The statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
 nlohmann::json visibilityStatsJson(const VisibilityStats& stats);
 /// Reads a visibility.txt back (for `verify`); throws InputError on malformed lines.
