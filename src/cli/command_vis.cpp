@@ -60,9 +60,7 @@ Action addVisCommand(CLI::App& app) {
     const std::filesystem::path partPath = dir / "visibility.txt.part";
     std::filesystem::remove(visPath);
     VisibilityTxtWriter writer(partPath.string());
-    s->propagation.interactionSink = [&writer](std::span<const Interaction> interactions) {
-      for (const Interaction& in : interactions) writer.add(in);
-    };
+    s->propagation.interactionSink = [&writer](const BlockerLists& lists) { writer.add(lists); };
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
     visBar.finish();
     writer.close();

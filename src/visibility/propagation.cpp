@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
+#include <tbb/concurrent_queue.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
@@ -32,6 +33,7 @@
 
 #include "quake/leaf_pvs.h"
 #include "util/timing.h"
+#include "visibility/blocker_lists.h"
 #include "visibility/facing_lines.h"
 #include "visibility/hull_overlap.h"
 #include "visibility/might_see.h"
@@ -40,12 +42,17 @@
 namespace gv {
 namespace {
 
-/// Blocker lists are built for this many consecutive sources at a time (one pipeline token):
-/// small enough that a chunk's lists are little memory, large enough to amortise the hand-over.
-constexpr size_t kSourcesPerChunk = 8;
-/// Chunks in flight per thread: room for threads to work ahead of a slow chunk (a source with
-/// huge lists) that holds up the in-order hand-over.
-constexpr size_t kChunksInFlightPerThread = 4;
+/// Blocker lists are built for this many entries of the sources' seen lists at a time (one
+/// pipeline token; a source's pairs come from its entries): small enough that the chunks in
+/// flight are little memory (at most this many pairs each), large enough to amortise the
+/// hand-over.
+constexpr uint64_t kSeenPerChunk = 1024;
+/// Chunks in flight per thread: room for threads to work ahead of a slow chunk that holds up
+/// the in-order hand-over.
+constexpr size_t kChunksInFlightPerThread = 3;
+/// A chunk whose id array grew past this (16 MiB) gives it back after the hand-over instead of
+/// keeping it for reuse.
+constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
 
 /// Above this many bits of per-directed-portal cell sets (2 x portals x cells; 2^32 bits =
 /// 512 MiB) the leaf-PVS cell search is not used.
@@ -476,16 +483,16 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   PortalReach reach;
   const double setBits = 2.0 * double(sub.portals.size()) * double(sub.cells.size());
   if (setBits <= kMaxPortalFlowBits) {
-    PrtFile graph;
-    graph.leafCount = graph.clusterCount = sub.cells.size();
-    graph.leafCluster.resize(sub.cells.size());
-    graph.clusterLeafs.resize(sub.cells.size());
+    PrtFile cellGraph;
+    cellGraph.leafCount = cellGraph.clusterCount = sub.cells.size();
+    cellGraph.leafCluster.resize(sub.cells.size());
+    cellGraph.clusterLeafs.resize(sub.cells.size());
     for (size_t c = 0; c < sub.cells.size(); ++c) {
-      graph.leafCluster[c] = static_cast<int>(c);
-      graph.clusterLeafs[c] = {static_cast<int>(c)};
+      cellGraph.leafCluster[c] = static_cast<int>(c);
+      cellGraph.clusterLeafs[c] = {static_cast<int>(c)};
     }
     for (const Portal& p : sub.portals)  // the polygon's normal points from back into front
-      graph.portals.push_back({p.polygon.vertices, static_cast<int>(p.back),
+      cellGraph.portals.push_back({p.polygon.vertices, static_cast<int>(p.back),
                                static_cast<int>(p.front), 0});
     LeafPvsOptions pvsOptions;
     pvsOptions.parallel = threads > 1;
@@ -497,7 +504,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     };
     tbb::task_arena arena(threads);
     LeafPvsResult pvs;
-    arena.execute([&] { pvs = computeLeafPvs(graph, pvsOptions); });
+    arena.execute([&] { pvs = computeLeafPvs(cellGraph, pvsOptions); });
     cellReach.resize(sub.cells.size(), CellSet(sub.cells.size()));
     for (size_t c = 0; c < sub.cells.size(); ++c)
       for (uint32_t d : pvs.visibleLeafs[c]) cellReach[c].insert(d);
@@ -649,17 +656,23 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     std::vector<uint32_t> candidates, blockers;
     std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
   };
-  // The interactions of source s (pairs (s, t), t > s, in t order) with their blocker lists.
-  // Counts for the statistics go to `chunk`.
+  // Work is counted in entries of the seen lists, all sources' lists one after another: source
+  // s holds positions [seenStart[s], seenStart[s + 1]), and its pairs (s, t) come from them.
+  std::vector<uint64_t> seenStart(n + 1, 0);
+  for (size_t p = 0; p < n; ++p) seenStart[p + 1] = seenStart[p] + seen[p].seen.size();
   struct Chunk {
-    size_t begin = 0, end = 0;  ///< sources [begin, end)
-    std::vector<Interaction> interactions;
-    uint64_t visible = 0, partial = 0, blockerSum = 0, sameCell = 0;
+    uint64_t begin = 0, end = 0;  ///< positions [begin, end) of the seen lists
+    size_t sourcesDone = 0;       ///< sources whose lists end by `end`
+    BlockerLists lists;
+    uint64_t visible = 0, partial = 0, sameCell = 0;
   };
-  auto blockersOf = [&](BlockerWorker& w, uint32_t s, Chunk& chunk) {
+  // The interactions (s, t), t > s, for entries [from, to) of seen(s), in t order, with their
+  // blocker lists, appended to `chunk`.
+  auto blockersOf = [&](BlockerWorker& w, uint32_t s, size_t from, size_t to, Chunk& chunk) {
     const ConvexPolygon& sp = scene.patches[s].polygon;
     for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
-    for (uint32_t e : seen[s].seen) {
+    for (size_t k = from; k < to; ++k) {
+      const uint32_t e = seen[s].seen[k];
       const uint32_t t = seenPatch(e);
       const uint8_t f = seenFlags(e);
       if (t <= s) continue;
@@ -668,7 +681,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
       const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
       const ConvexPolygon& tp = scene.patches[t].polygon;
       if (!front || !canFace(sp, tp, tol.length())) continue;
-      Interaction in{s, t, {}};
+      w.blockers.clear();
       if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
         ++chunk.sameCell;
       } else {
@@ -680,7 +693,6 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         grid.gather(box, tol.length(), w.candidates);
         const auto& b = seen[t].seen;
         auto fromT = b.begin();  // candidates rise: each search starts where the last ended
-        w.blockers.clear();
         sortIds(w.candidates, w.bits);  // blockers come out sorted
         for (uint32_t c : w.candidates) {
           if (c == s || c == t) continue;
@@ -692,76 +704,100 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                                          vertices.data() + vertexStart[c + 1]);
           if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal)) w.blockers.push_back(c);
         }
-        // Exactly sized: the lists in flight are most of the memory on big scenes.
-        in.blockers.assign(w.blockers.begin(), w.blockers.end());
       }
-      if (in.blockers.empty()) {
-        ++chunk.visible;
-      } else {
-        ++chunk.partial;
-        chunk.blockerSum += in.blockers.size();
-      }
-      chunk.interactions.push_back(std::move(in));
+      ++(w.blockers.empty() ? chunk.visible : chunk.partial);
+      chunk.lists.add(s, t, w.blockers);
     }
     for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
   };
-  // Sources in chunks through a pipeline: chunks are worked on in parallel and handed on (to
-  // the sink or into the graph) one at a time in source order, so the output is (s, r) sorted
-  // whatever the schedule, and with a sink only the chunks in flight are held.
+  // Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
+  // handed on (to the sink or into the graph) one at a time in order, so the output is (s, r)
+  // sorted whatever the schedule, and with a sink only the chunks in flight are held: each is at
+  // most kSeenPerChunk pairs, a source that saw many patches being cut into several. Chunks are
+  // reused (no allocation once their arrays have grown), unless they grew past kKeptIdsPerChunk.
   tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers([n] {
     return BlockerWorker{std::vector<uint8_t>(n, 0), {}, {},
                          std::vector<uint64_t>((n + 63) / 64, 0)};
   });
+  std::vector<std::unique_ptr<Chunk>> chunks;  // every chunk made (touched by the first stage)
+  tbb::concurrent_queue<Chunk*> freeChunks;     // handed back by the last stage
   std::vector<std::pair<uint32_t, uint32_t>> partialPairs;  // in order, for the shaft sample
   uint64_t blockerSum = 0;
-  size_t nextSource = 0;
-  using ChunkPtr = std::shared_ptr<Chunk>;
+  uint64_t nextPosition = 0;
+  size_t sourcesReported = 0;
   {
     tbb::task_arena arena(threads);
     arena.execute([&] {
       tbb::parallel_pipeline(
           kChunksInFlightPerThread * size_t(threads),
-          tbb::make_filter<void, ChunkPtr>(
+          tbb::make_filter<void, Chunk*>(
               tbb::filter_mode::serial_in_order,
-              [&](tbb::flow_control& fc) -> ChunkPtr {
-                if (nextSource >= n) {
+              [&](tbb::flow_control& fc) -> Chunk* {
+                if (nextPosition >= seenStart[n]) {
                   fc.stop();
                   return nullptr;
                 }
-                auto chunk = std::make_shared<Chunk>();
-                chunk->begin = nextSource;
-                chunk->end = nextSource = std::min(n, nextSource + kSourcesPerChunk);
+                Chunk* chunk = nullptr;
+                if (!freeChunks.try_pop(chunk)) {
+                  chunks.push_back(std::make_unique<Chunk>());
+                  chunk = chunks.back().get();
+                }
+                chunk->begin = nextPosition;
+                chunk->end = nextPosition = std::min(seenStart[n], nextPosition + kSeenPerChunk);
+                // Sources s with seenStart[s + 1] <= end.
+                chunk->sourcesDone = size_t(
+                    std::upper_bound(seenStart.begin() + 1, seenStart.end(), chunk->end) -
+                    (seenStart.begin() + 1));
                 return chunk;
               }) &
-              tbb::make_filter<ChunkPtr, ChunkPtr>(
+              tbb::make_filter<Chunk*, Chunk*>(
                   tbb::filter_mode::parallel,
-                  [&](ChunkPtr chunk) {
+                  [&](Chunk* chunk) {
                     if (options.deadline != Clock::time_point::max() &&
                         Clock::now() > options.deadline)
                       throw PropagationDeadlineExceeded();
                     BlockerWorker& w = blockerWorkers.local();
-                    for (size_t s = chunk->begin; s < chunk->end; ++s)
-                      blockersOf(w, static_cast<uint32_t>(s), *chunk);
+                    // The first source with entries at or after `begin`, then on while its
+                    // entries start before `end`.
+                    size_t s = size_t(std::upper_bound(seenStart.begin(), seenStart.end(),
+                                                       chunk->begin) - seenStart.begin()) - 1;
+                    for (; s < n && seenStart[s] < chunk->end; ++s) {
+                      const uint64_t from = std::max(chunk->begin, seenStart[s]);
+                      const uint64_t to = std::min(chunk->end, seenStart[s + 1]);
+                      if (from < to)
+                        blockersOf(w, static_cast<uint32_t>(s), size_t(from - seenStart[s]),
+                                   size_t(to - seenStart[s]), *chunk);
+                    }
                     return chunk;
                   }) &
-              tbb::make_filter<ChunkPtr, void>(
-                  tbb::filter_mode::serial_in_order, [&](ChunkPtr chunk) {
+              tbb::make_filter<Chunk*, void>(
+                  tbb::filter_mode::serial_in_order, [&](Chunk* chunk) {
+                    const BlockerLists& lists = chunk->lists;
                     st.pairsVisible += chunk->visible;
                     st.pairsPartial += chunk->partial;
                     st.sameCellShortcuts += chunk->sameCell;
-                    blockerSum += chunk->blockerSum;
-                    for (const Interaction& in : chunk->interactions)
-                      if (!in.blockers.empty()) partialPairs.emplace_back(in.s, in.r);
+                    blockerSum += lists.idCount();
+                    for (size_t k = 0; k < lists.size(); ++k)
+                      if (!lists.blockers(k).empty()) partialPairs.emplace_back(lists.s(k), lists.r(k));
                     if (options.interactionSink) {
-                      options.interactionSink(chunk->interactions);
+                      options.interactionSink(lists);
                     } else {
-                      for (Interaction& in : chunk->interactions)
-                        graph.interactions.push_back(std::move(in));
+                      for (size_t k = 0; k < lists.size(); ++k) {
+                        const auto ids = lists.blockers(k);
+                        graph.interactions.push_back(
+                            {lists.s(k), lists.r(k), std::vector<uint32_t>(ids.begin(), ids.end())});
+                      }
                     }
-                    if (options.blockerProgress) options.blockerProgress(chunk->end, n);
+                    if (options.blockerProgress && chunk->sourcesDone > sourcesReported)
+                      options.blockerProgress(sourcesReported = chunk->sourcesDone, n);
+                    if (chunk->lists.idCapacity() > kKeptIdsPerChunk) chunk->lists = {};
+                    chunk->lists.clear();
+                    chunk->visible = chunk->partial = chunk->sameCell = 0;
+                    freeChunks.push(chunk);
                   }));
     });
   }
+  if (options.blockerProgress && sourcesReported < n) options.blockerProgress(n, n);
   st.meanBlockersPerPartial = st.pairsPartial ? double(blockerSum) / double(st.pairsPartial) : 0;
   st.blockerSeconds = secondsSince(blockerStart);
 

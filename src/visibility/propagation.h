@@ -4,12 +4,12 @@
 #pragma once
 
 #include <functional>
-#include <span>
 #include <stdexcept>
 
 #include "bsp/subdivision.h"
 #include "scene/scene.h"
 #include "util/timing.h"
+#include "visibility/blocker_lists.h"
 #include "visibility/visibility_graph.h"
 
 namespace gv {
@@ -34,7 +34,7 @@ struct PropagationOptions {
   /// order, a few sources' at a time, from one thread at a time while later sources are being
   /// worked on. Only the lists in flight are then held: `globalvis vis` writes visibility.txt
   /// this way, since on big scenes the blocker lists outgrow memory.
-  std::function<void(std::span<const Interaction>)> interactionSink;
+  std::function<void(const BlockerLists&)> interactionSink;
   /// The searches give up (computeVisibility throws PropagationDeadlineExceeded) once the clock
   /// passes this: a time budget that also holds inside one long search (`globalvis bench`).
   Clock::time_point deadline = Clock::time_point::max();

@@ -45,13 +45,17 @@ void VisibilityTxtWriter::put(uint64_t v, char after) {
   buffer_.push_back(after);
 }
 
-void VisibilityTxtWriter::add(const Interaction& in) {
-  put(in.s, ' ');
-  put(in.r, ' ');
-  put(in.blockers.size(), in.blockers.empty() ? '\n' : ' ');
-  for (size_t k = 0; k < in.blockers.size(); ++k)
-    put(in.blockers[k], k + 1 == in.blockers.size() ? '\n' : ' ');
+void VisibilityTxtWriter::add(uint32_t s, uint32_t r, std::span<const uint32_t> blockers) {
+  put(s, ' ');
+  put(r, ' ');
+  put(blockers.size(), blockers.empty() ? '\n' : ' ');
+  for (size_t k = 0; k < blockers.size(); ++k)
+    put(blockers[k], k + 1 == blockers.size() ? '\n' : ' ');
   if (buffer_.size() >= kFlushBytes) flush();
+}
+
+void VisibilityTxtWriter::add(const BlockerLists& lists) {
+  for (size_t k = 0; k < lists.size(); ++k) add(lists.s(k), lists.r(k), lists.blockers(k));
 }
 
 void VisibilityTxtWriter::close() {

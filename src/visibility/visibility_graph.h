@@ -4,11 +4,13 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "visibility/blocker_lists.h"
 #include "visibility/stabbing.h"
 
 namespace gv {
@@ -75,7 +77,11 @@ class VisibilityTxtWriter {
   ~VisibilityTxtWriter();
   VisibilityTxtWriter(const VisibilityTxtWriter&) = delete;
   VisibilityTxtWriter& operator=(const VisibilityTxtWriter&) = delete;
-  void add(const Interaction& in);
+  /// One line: `s r n b1 ... bn`.
+  void add(uint32_t s, uint32_t r, std::span<const uint32_t> blockers);
+  void add(const Interaction& in) { add(in.s, in.r, in.blockers); }
+  /// A line per pair of `lists`, in their order.
+  void add(const BlockerLists& lists);
   /// Flushes and closes the file; throws if any write failed. Idempotent.
   void close();
 
