@@ -20,8 +20,9 @@ namespace gv::cli {
 
 Action addVisCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "vis", "Conservative patch-to-patch visibility with blocker lists (paper §3-§5); writes "
-             "patches.obj, visibility.txt and stats.json into a directory");
+      "vis",
+      "Conservative patch-to-patch visibility with blocker lists (paper §3-§5); writes "
+      "patches.obj, visibility.txt and stats.json into a directory");
   struct State {
     std::string scene, output;
     BspOptions bsp;
@@ -30,7 +31,10 @@ Action addVisCommand(CLI::App& app) {
   };
   auto s = std::make_shared<State>();
   s->bsp.minCoverage = kVisibilityMinCoverage;
-  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
+  cmd->add_option(
+         "scene", s->scene,
+         "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")
+      ->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--threads", s->propagation.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
@@ -83,13 +87,15 @@ Action addVisCommand(CLI::App& app) {
     fmt::print("pairs listed {} of {:.0f} ({:.2f} %): VISIBLE {}, PARTIAL {} ({:.1f} %)\n", listed,
                pairs, pairs > 0 ? 100.0 * double(listed) / pairs : 0.0, v.pairsVisible,
                v.pairsPartial, listed ? 100.0 * double(v.pairsPartial) / double(listed) : 0.0);
-    fmt::print("stabbing tests: {} cell-level, {} patch-level ({} unresolved); mean sequence {:.2f}\n",
-               v.cellStabbingTests, v.patchStabbingTests, v.unresolvedStabbing, v.meanSequenceLength);
+    fmt::print(
+        "stabbing tests: {} cell-level, {} patch-level ({} unresolved); mean sequence {:.2f}\n",
+        v.cellStabbingTests, v.patchStabbingTests, v.unresolvedStabbing, v.meanSequenceLength);
     fmt::print("blockers per PARTIAL pair {:.2f} (shaft cull {:.2f})\n", v.meanBlockersPerPartial,
                v.meanShaftCullPerPartial);
-    fmt::print("visibility {:.3f} s on {} threads (cells {:.3f}, patches {:.3f}, blockers {:.3f}); "
-               "wrote {}\n", v.seconds, v.threads, v.cellSeconds, v.patchSeconds, v.blockerSeconds,
-               dir.string());
+    fmt::print(
+        "visibility {:.3f} s on {} threads (cells {:.3f}, patches {:.3f}, blockers {:.3f}); "
+        "wrote {}\n",
+        v.seconds, v.threads, v.cellSeconds, v.patchSeconds, v.blockerSeconds, dir.string());
     return 0;
   };
 }

@@ -50,6 +50,12 @@ constexpr uint64_t kSeenPerChunk = 1024;
 /// Chunks in flight per thread: room for threads to work ahead of a slow chunk that holds up
 /// the in-order hand-over.
 constexpr size_t kChunksInFlightPerThread = 3;
+/// Flags of the blocker stage's candidates: seen from the pair's S, from its T.
+constexpr uint8_t kFromS = 1, kFromT = 2;
+/// A membership flag costs about this fraction of a binary search in seen(T) (both per
+/// candidate; flags need a pass over seen(T) to set and one to clear).
+constexpr size_t kFlagsPerSearch = 4;
+
 /// A chunk whose id array grew past this (16 MiB) gives it back after the hand-over instead of
 /// keeping it for reuse.
 constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
@@ -57,7 +63,6 @@ constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
 /// Above this many bits of per-directed-portal cell sets (2 x portals x cells; 2^32 bits =
 /// 512 MiB) the leaf-PVS cell search is not used.
 constexpr double kMaxPortalFlowBits = 4294967296.0;
-
 
 /// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
 struct CellPatch {
@@ -115,8 +120,8 @@ constexpr uint8_t seenFlags(uint32_t entry) {
 constexpr size_t kMaxPatches = size_t{1} << 30;
 
 struct PatchSearchResult {
-  std::vector<uint32_t> seen;                      ///< seenEntry(patch, flags), sorted by patch
-  std::vector<uint32_t> sameCellVisible;           ///< patches proven VISIBLE by the shortcut
+  std::vector<uint32_t> seen;             ///< seenEntry(patch, flags), sorted by patch
+  std::vector<uint32_t> sameCellVisible;  ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
   uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
 };
@@ -208,8 +213,9 @@ class PatchSearch {
     touchedCells_.clear();
     std::sort(result.seen.begin(), result.seen.end());
     std::sort(result.sameCellVisible.begin(), result.sameCellVisible.end());
-    result.sameCellVisible.erase(std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
-                                 result.sameCellVisible.end());
+    result.sameCellVisible.erase(
+        std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
+        result.sameCellVisible.end());
     result.stabbing = stabber_.stats();
     result.facingRuleTests = facingRuleTests_;
     return result;
@@ -459,9 +465,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   const auto start = Clock::now();
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : tbb::this_task_arena::max_concurrency();
+  const int threads =
+      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   VisibilityGraph graph;
   VisibilityStats& st = graph.stats;
   if (n >= kMaxPatches)
@@ -492,8 +497,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
       cellGraph.clusterLeafs[c] = {static_cast<int>(c)};
     }
     for (const Portal& p : sub.portals)  // the polygon's normal points from back into front
-      cellGraph.portals.push_back({p.polygon.vertices, static_cast<int>(p.back),
-                               static_cast<int>(p.front), 0});
+      cellGraph.portals.push_back(
+          {p.polygon.vertices, static_cast<int>(p.back), static_cast<int>(p.front), 0});
     LeafPvsOptions pvsOptions;
     pvsOptions.parallel = threads > 1;
     // Between waves of the search: progress, and the deadline (a wave is short).
@@ -600,7 +605,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
-      n, threads, [&] {
+      n, threads,
+      [&] {
         PatchSearch w(sub, cellPatches, placements, reach, cellReach, tol);
         w.checkDeadline.deadline = options.deadline;
         return w;
@@ -651,8 +657,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   for (size_t p = 0; p < n; ++p)
     std::copy(scene.patches[p].polygon.vertices.begin(), scene.patches[p].polygon.vertices.end(),
               vertices.begin() + vertexStart[p]);
+  // The candidates' plane normals in one array (a Patch is far larger than its normal).
+  std::vector<Vec3> normals(n);
+  for (size_t p = 0; p < n; ++p) normals[p] = scene.patches[p].polygon.plane.normal;
   struct BlockerWorker {
-    std::vector<uint8_t> seenFromS;  ///< per patch: in seen(S) of the current source
+    std::vector<uint8_t> seen;  ///< per patch: kFromS (in seen(S)) | kFromT (in seen(T))
     std::vector<uint32_t> candidates, blockers;
     std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
   };
@@ -670,7 +679,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   // blocker lists, appended to `chunk`.
   auto blockersOf = [&](BlockerWorker& w, uint32_t s, size_t from, size_t to, Chunk& chunk) {
     const ConvexPolygon& sp = scene.patches[s].polygon;
-    for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
+    for (uint32_t e : seen[s].seen) w.seen[seenPatch(e)] = kFromS;
     for (size_t k = from; k < to; ++k) {
       const uint32_t e = seen[s].seen[k];
       const uint32_t t = seenPatch(e);
@@ -692,23 +701,32 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         // The slack is PairHull's box tolerance: the grid does PairHull's box test.
         grid.gather(box, tol.length(), w.candidates);
         const auto& b = seen[t].seen;
-        auto fromT = b.begin();  // candidates rise: each search starts where the last ended
         sortIds(w.candidates, w.bits);  // blockers come out sorted
+        // Seen from T: by flags when there are many candidates to ask about (setting them
+        // costs a pass over seen(T)), else by searches in the sorted seen(T).
+        const bool flagT = w.candidates.size() * kFlagsPerSearch > b.size();
+        if (flagT)
+          for (uint32_t e : b) w.seen[seenPatch(e)] |= kFromT;
+        auto fromT = b.begin();  // candidates rise: each search starts where the last ended
         for (uint32_t c : w.candidates) {
           if (c == s || c == t) continue;
-          if (!w.seenFromS[c]) {
+          if (flagT) {
+            if (!w.seen[c]) continue;
+          } else if (!w.seen[c]) {
             fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
             if (fromT == b.end() || seenPatch(*fromT) != c) continue;
           }
           const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
                                          vertices.data() + vertexStart[c + 1]);
-          if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal)) w.blockers.push_back(c);
+          if (hull.meetsInBox(cv, normals[c])) w.blockers.push_back(c);
         }
+        if (flagT)
+          for (uint32_t e : b) w.seen[seenPatch(e)] &= kFromS;
       }
       ++(w.blockers.empty() ? chunk.visible : chunk.partial);
       chunk.lists.add(s, t, w.blockers);
     }
-    for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
+    for (uint32_t e : seen[s].seen) w.seen[seenPatch(e)] = 0;
   };
   // Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
   // handed on (to the sink or into the graph) one at a time in order, so the output is (s, r)
@@ -716,11 +734,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   // most kSeenPerChunk pairs, a source that saw many patches being cut into several. Chunks are
   // reused (no allocation once their arrays have grown), unless they grew past kKeptIdsPerChunk.
   tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers([n] {
-    return BlockerWorker{std::vector<uint8_t>(n, 0), {}, {},
-                         std::vector<uint64_t>((n + 63) / 64, 0)};
+    return BlockerWorker{
+        std::vector<uint8_t>(n, 0), {}, {}, std::vector<uint64_t>((n + 63) / 64, 0)};
   });
   std::vector<std::unique_ptr<Chunk>> chunks;  // every chunk made (touched by the first stage)
-  tbb::concurrent_queue<Chunk*> freeChunks;     // handed back by the last stage
+  tbb::concurrent_queue<Chunk*> freeChunks;    // handed back by the last stage
   std::vector<std::pair<uint32_t, uint32_t>> partialPairs;  // in order, for the shaft sample
   uint64_t blockerSum = 0;
   uint64_t nextPosition = 0;
@@ -745,9 +763,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                 chunk->begin = nextPosition;
                 chunk->end = nextPosition = std::min(seenStart[n], nextPosition + kSeenPerChunk);
                 // Sources s with seenStart[s + 1] <= end.
-                chunk->sourcesDone = size_t(
-                    std::upper_bound(seenStart.begin() + 1, seenStart.end(), chunk->end) -
-                    (seenStart.begin() + 1));
+                chunk->sourcesDone =
+                    size_t(std::upper_bound(seenStart.begin() + 1, seenStart.end(), chunk->end) -
+                           (seenStart.begin() + 1));
                 return chunk;
               }) &
               tbb::make_filter<Chunk*, Chunk*>(
@@ -759,8 +777,10 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                     BlockerWorker& w = blockerWorkers.local();
                     // The first source with entries at or after `begin`, then on while its
                     // entries start before `end`.
-                    size_t s = size_t(std::upper_bound(seenStart.begin(), seenStart.end(),
-                                                       chunk->begin) - seenStart.begin()) - 1;
+                    size_t s =
+                        size_t(std::upper_bound(seenStart.begin(), seenStart.end(), chunk->begin) -
+                               seenStart.begin()) -
+                        1;
                     for (; s < n && seenStart[s] < chunk->end; ++s) {
                       const uint64_t from = std::max(chunk->begin, seenStart[s]);
                       const uint64_t to = std::min(chunk->end, seenStart[s + 1]);
@@ -770,31 +790,30 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
                     }
                     return chunk;
                   }) &
-              tbb::make_filter<Chunk*, void>(
-                  tbb::filter_mode::serial_in_order, [&](Chunk* chunk) {
-                    const BlockerLists& lists = chunk->lists;
-                    st.pairsVisible += chunk->visible;
-                    st.pairsPartial += chunk->partial;
-                    st.sameCellShortcuts += chunk->sameCell;
-                    blockerSum += lists.idCount();
-                    for (size_t k = 0; k < lists.size(); ++k)
-                      if (!lists.blockers(k).empty()) partialPairs.emplace_back(lists.s(k), lists.r(k));
-                    if (options.interactionSink) {
-                      options.interactionSink(lists);
-                    } else {
-                      for (size_t k = 0; k < lists.size(); ++k) {
-                        const auto ids = lists.blockers(k);
-                        graph.interactions.push_back(
-                            {lists.s(k), lists.r(k), std::vector<uint32_t>(ids.begin(), ids.end())});
-                      }
-                    }
-                    if (options.blockerProgress && chunk->sourcesDone > sourcesReported)
-                      options.blockerProgress(sourcesReported = chunk->sourcesDone, n);
-                    if (chunk->lists.idCapacity() > kKeptIdsPerChunk) chunk->lists = {};
-                    chunk->lists.clear();
-                    chunk->visible = chunk->partial = chunk->sameCell = 0;
-                    freeChunks.push(chunk);
-                  }));
+              tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, [&](Chunk* chunk) {
+                const BlockerLists& lists = chunk->lists;
+                st.pairsVisible += chunk->visible;
+                st.pairsPartial += chunk->partial;
+                st.sameCellShortcuts += chunk->sameCell;
+                blockerSum += lists.idCount();
+                for (size_t k = 0; k < lists.size(); ++k)
+                  if (!lists.blockers(k).empty()) partialPairs.emplace_back(lists.s(k), lists.r(k));
+                if (options.interactionSink) {
+                  options.interactionSink(lists);
+                } else {
+                  for (size_t k = 0; k < lists.size(); ++k) {
+                    const auto ids = lists.blockers(k);
+                    graph.interactions.push_back(
+                        {lists.s(k), lists.r(k), std::vector<uint32_t>(ids.begin(), ids.end())});
+                  }
+                }
+                if (options.blockerProgress && chunk->sourcesDone > sourcesReported)
+                  options.blockerProgress(sourcesReported = chunk->sourcesDone, n);
+                if (chunk->lists.idCapacity() > kKeptIdsPerChunk) chunk->lists = {};
+                chunk->lists.clear();
+                chunk->visible = chunk->partial = chunk->sameCell = 0;
+                freeChunks.push(chunk);
+              }));
     });
   }
   if (options.blockerProgress && sourcesReported < n) options.blockerProgress(n, n);

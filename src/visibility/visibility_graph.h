@@ -4,11 +4,10 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "visibility/blocker_lists.h"
 #include "visibility/stabbing.h"
@@ -37,21 +36,21 @@ struct SequenceHistogram {
 /// The figures of §7.2 and §7.3 for one run.
 struct VisibilityStats {
   size_t patches = 0, cells = 0, portals = 0;
-  uint64_t cellPairsVisible = 0;       ///< ordered (source, reached) cell pairs, source included
-  uint64_t cellStabbingTests = 0;      ///< portal-sequence tests of the cell-to-cell search
-  uint64_t patchStabbingTests = 0;     ///< tests of the patch searches (portals and targets)
+  uint64_t cellPairsVisible = 0;    ///< ordered (source, reached) cell pairs, source included
+  uint64_t cellStabbingTests = 0;   ///< portal-sequence tests of the cell-to-cell search
+  uint64_t patchStabbingTests = 0;  ///< tests of the patch searches (portals and targets)
   /// Of those, target tests in the source's own cell decided by the two-polygon facing rule
   /// (no portal between: exact without the stabbing kernel; not in patchStabbing).
   uint64_t patchFacingRuleTests = 0;
   /// Patches a source patch's search saw (either facing), mean over sources: the candidates of
   /// its blocker lists.
   double meanPatchesSeen = 0;
-  uint64_t unresolvedStabbing = 0;     ///< tests answered "maybe" (counted as visible)
+  uint64_t unresolvedStabbing = 0;            ///< tests answered "maybe" (counted as visible)
   StabbingStats cellStabbing, patchStabbing;  ///< how the tests were decided, per search level
-  double meanSequenceLength = 0;       ///< over the cell-level tests, in portals
-  SequenceHistogram cellHistogram;     ///< Fig. 13
+  double meanSequenceLength = 0;              ///< over the cell-level tests, in portals
+  SequenceHistogram cellHistogram;            ///< Fig. 13
   uint64_t pairsVisible = 0, pairsPartial = 0;
-  uint64_t sameCellShortcuts = 0;      ///< pairs declared VISIBLE by the same-empty-cell rule
+  uint64_t sameCellShortcuts = 0;  ///< pairs declared VISIBLE by the same-empty-cell rule
   double meanBlockersPerPartial = 0;
   double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
   uint64_t shaftSamples = 0;
