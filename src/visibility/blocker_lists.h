@@ -32,6 +32,16 @@ class BlockerLists {
     ids_.insert(ids_.end(), blockers.begin(), blockers.end());
     start_.push_back(ids_.size());
   }
+  /// Appends pair (s, r) with an empty list, which addBlocker then extends.
+  void addPair(uint32_t s, uint32_t r) {
+    pairs_.emplace_back(s, r);
+    start_.push_back(ids_.size());
+  }
+  /// Appends `id` to the list of the last pair added.
+  void addBlocker(uint32_t id) {
+    ids_.push_back(id);
+    ++start_.back();
+  }
   /// Removes every pair, keeping the capacity (a reused block allocates nothing).
   void clear() {
     pairs_.clear();

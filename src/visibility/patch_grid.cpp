@@ -102,11 +102,18 @@ int PatchGrid::coordinate(const Level& l, int axis, double t) const {
 }
 
 void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out) const {
-  if (box.empty()) return;
+  const size_t before = out.size();
+  out.resize(before + ids_.size());
+  out.resize(before + gatherInto(box, slack, out.data() + before));
+}
+
+size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out) const {
+  if (box.empty()) return 0;
   const Aabb& a = box;
   const double e = slack;
   const double lo[3] = {box.lo.x - slack, box.lo.y - slack, box.lo.z - slack};
   const double hi[3] = {box.hi.x + slack, box.hi.y + slack, box.hi.z + slack};
+  size_t count = 0;
   for (const Level& l : levels_) {
     if (l.start.front() == l.start.back()) continue;  // no patch at this level
     // A box stored in cell i starts in it and is at most one cell long: it lies in cells i and
@@ -119,18 +126,22 @@ void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out
     }
     for (int z = first[2]; z <= last[2]; ++z)
       for (int y = first[1]; y <= last[1]; ++y) {
-        // Cells x = first..last of one row are consecutive buckets: one run of entries.
+        // Cells x = first..last of one row are consecutive buckets: one run of entries, scanned
+        // without branches (each id written, the count advanced on a hit: hits are
+        // unpredictable). The comparisons are PairHull's box test.
         const uint32_t begin = l.start[l.cell(first[0], y, z)];
         const uint32_t end = l.start[l.cell(last[0], y, z) + 1];
         for (uint32_t i = begin; i < end; ++i) {
           const Aabb& b = boxes_[i];
-          // PairHull's box test, the same comparisons in the same order.
-          if (a.lo.x <= b.hi.x + e && b.lo.x <= a.hi.x + e && a.lo.y <= b.hi.y + e &&
-              b.lo.y <= a.hi.y + e && a.lo.z <= b.hi.z + e && b.lo.z <= a.hi.z + e)
-            out.push_back(ids_[i]);
+          const bool hit = (a.lo.x <= b.hi.x + e) & (b.lo.x <= a.hi.x + e) &
+                           (a.lo.y <= b.hi.y + e) & (b.lo.y <= a.hi.y + e) &
+                           (a.lo.z <= b.hi.z + e) & (b.lo.z <= a.hi.z + e);
+          out[count] = ids_[i];
+          count += hit;
         }
       }
   }
+  return count;
 }
 
 }  // namespace gv

@@ -22,6 +22,12 @@ class PatchGrid {
   /// by `slack` on every side (touching counts as meeting; empty boxes meet nothing). The
   /// comparisons are PairHull's box test, so that a caller may skip its own.
   void gather(const Aabb& box, double slack, std::vector<uint32_t>& out) const;
+  /// The same patches as gather(), written to out[0, count) (in the same order); returns the
+  /// count. `out` must have room for patchCount() ids (a patch is written at most once, but
+  /// every candidate's slot is written before its box test decides whether it stays).
+  size_t gatherInto(const Aabb& box, double slack, uint32_t* out) const;
+  /// Patches stored (those with non-empty boxes).
+  size_t patchCount() const { return ids_.size(); }
 
   /// Grid levels (for tests).
   size_t levelCount() const { return levels_.size(); }

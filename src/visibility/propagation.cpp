@@ -407,7 +407,7 @@ class CellSearch {
 /// Sorts distinct ids in [0, 64 bits.size()): by std::sort when there are few, else by setting
 /// their bits in `bits` (all clear on entry and on return) and reading them back in order, which
 /// is cheaper once the ids are more than a sparse sample of the range.
-void sortIds(std::vector<uint32_t>& ids, std::vector<uint64_t>& bits) {
+void sortIds(std::span<uint32_t> ids, std::vector<uint64_t>& bits) {
   if (ids.size() < 64 || double(ids.size()) * std::log2(double(ids.size())) < double(bits.size())) {
     std::sort(ids.begin(), ids.end());
     return;
@@ -418,10 +418,10 @@ void sortIds(std::vector<uint32_t>& ids, std::vector<uint64_t>& bits) {
     lo = std::min(lo, id);
     hi = std::max(hi, id);
   }
-  ids.clear();
+  size_t k = 0;
   for (size_t word = lo >> 6; word <= (hi >> 6); ++word) {
     for (uint64_t b = bits[word]; b; b &= b - 1)
-      ids.push_back(static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b))));
+      ids[k++] = static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b)));
     bits[word] = 0;
   }
 }
@@ -659,11 +659,15 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
               vertices.begin() + vertexStart[p]);
   // The candidates' plane normals in one array (a Patch is far larger than its normal).
   std::vector<Vec3> normals(n);
-  for (size_t p = 0; p < n; ++p) normals[p] = scene.patches[p].polygon.plane.normal;
+  std::vector<double> normalLengths(n);
+  for (size_t p = 0; p < n; ++p) {
+    normals[p] = scene.patches[p].polygon.plane.normal;
+    normalLengths[p] = length(normals[p]);
+  }
   struct BlockerWorker {
-    std::vector<uint8_t> seen;  ///< per patch: kFromS (in seen(S)) | kFromT (in seen(T))
-    std::vector<uint32_t> candidates, blockers;
-    std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
+    std::vector<uint8_t> seen;       ///< per patch: kFromS (in seen(S)) | kFromT (in seen(T))
+    std::vector<uint32_t> gathered;  ///< room for every patch: PatchGrid::gatherInto's output
+    std::vector<uint64_t> bits;      ///< one per patch, all clear between calls of sortIds
   };
   // Work is counted in entries of the seen lists, all sources' lists one after another: source
   // s holds positions [seenStart[s], seenStart[s + 1]), and its pairs (s, t) come from them.
@@ -690,25 +694,26 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
       const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
       const ConvexPolygon& tp = scene.patches[t].polygon;
       if (!front || !canFace(sp, tp, tol.length())) continue;
-      w.blockers.clear();
+      BlockerLists& lists = chunk.lists;
+      lists.addPair(s, t);  // its blockers are appended below, straight into the chunk
       if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
         ++chunk.sameCell;
       } else {
         const PairHull hull(sp, tp, tol);
         Aabb box = patchBoxes[s];
         box.add(patchBoxes[t]);
-        w.candidates.clear();
         // The slack is PairHull's box tolerance: the grid does PairHull's box test.
-        grid.gather(box, tol.length(), w.candidates);
+        const std::span<uint32_t> candidates(w.gathered.data(),
+                                             grid.gatherInto(box, tol.length(), w.gathered.data()));
         const auto& b = seen[t].seen;
-        sortIds(w.candidates, w.bits);  // blockers come out sorted
+        sortIds(candidates, w.bits);  // blockers come out sorted
         // Seen from T: by flags when there are many candidates to ask about (setting them
         // costs a pass over seen(T)), else by searches in the sorted seen(T).
-        const bool flagT = w.candidates.size() * kFlagsPerSearch > b.size();
+        const bool flagT = candidates.size() * kFlagsPerSearch > b.size();
         if (flagT)
-          for (uint32_t e : b) w.seen[seenPatch(e)] |= kFromT;
+          for (uint32_t f : b) w.seen[seenPatch(f)] |= kFromT;
         auto fromT = b.begin();  // candidates rise: each search starts where the last ended
-        for (uint32_t c : w.candidates) {
+        for (uint32_t c : candidates) {
           if (c == s || c == t) continue;
           if (flagT) {
             if (!w.seen[c]) continue;
@@ -718,13 +723,12 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           }
           const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
                                          vertices.data() + vertexStart[c + 1]);
-          if (hull.meetsInBox(cv, normals[c])) w.blockers.push_back(c);
+          if (hull.meetsInBox(cv, normals[c], normalLengths[c])) lists.addBlocker(c);
         }
         if (flagT)
-          for (uint32_t e : b) w.seen[seenPatch(e)] &= kFromS;
+          for (uint32_t f : b) w.seen[seenPatch(f)] &= kFromS;
       }
-      ++(w.blockers.empty() ? chunk.visible : chunk.partial);
-      chunk.lists.add(s, t, w.blockers);
+      ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
     }
     for (uint32_t e : seen[s].seen) w.seen[seenPatch(e)] = 0;
   };
@@ -733,9 +737,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   // sorted whatever the schedule, and with a sink only the chunks in flight are held: each is at
   // most kSeenPerChunk pairs, a source that saw many patches being cut into several. Chunks are
   // reused (no allocation once their arrays have grown), unless they grew past kKeptIdsPerChunk.
-  tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers([n] {
-    return BlockerWorker{
-        std::vector<uint8_t>(n, 0), {}, {}, std::vector<uint64_t>((n + 63) / 64, 0)};
+  tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers([n, &grid] {
+    return BlockerWorker{std::vector<uint8_t>(n, 0), std::vector<uint32_t>(grid.patchCount()),
+                         std::vector<uint64_t>((n + 63) / 64, 0)};
   });
   std::vector<std::unique_ptr<Chunk>> chunks;  // every chunk made (touched by the first stage)
   tbb::concurrent_queue<Chunk*> freeChunks;    // handed back by the last stage
