@@ -711,7 +711,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         // costs a pass over seen(T)), else by searches in the sorted seen(T).
         const bool flagT = candidates.size() * kFlagsPerSearch > b.size();
         if (flagT)
-          for (uint32_t f : b) w.seen[seenPatch(f)] |= kFromT;
+          for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
         auto fromT = b.begin();  // candidates rise: each search starts where the last ended
         for (uint32_t c : candidates) {
           if (c == s || c == t) continue;
@@ -726,7 +726,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
           if (hull.meetsInBox(cv, normals[c], normalLengths[c])) lists.addBlocker(c);
         }
         if (flagT)
-          for (uint32_t f : b) w.seen[seenPatch(f)] &= kFromS;
+          for (uint32_t entry : b) w.seen[seenPatch(entry)] &= kFromS;
       }
       ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
     }
