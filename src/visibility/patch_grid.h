@@ -37,6 +37,9 @@ class PatchGrid {
     double cellSize = 0;
     int dims[3] = {1, 1, 1};
     std::vector<uint32_t> start;  ///< per cell, its first entry (CSR), and one past the last
+    /// Per cell, the union of its entries' boxes, when the level's non-empty cells hold
+    /// kEntriesForCellBounds entries or more on average (else empty, and rows are scanned whole).
+    std::vector<Aabb> bounds;
     size_t cell(int x, int y, int z) const { return (size_t(z) * dims[1] + y) * dims[0] + x; }
   };
   /// The cell coordinate along `axis` of level `l` holding coordinate t (clamped to the grid).
