@@ -14,13 +14,15 @@
 #include "scene/scene_io.h"
 #include "util/progress_bar.h"
 #include "visibility/propagation.h"
+#include "visibility/visibility_graph.h"
 
 namespace gv::cli {
 
 Action addVisCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "vis", "Conservative patch-to-patch visibility with blocker lists (paper §3-§5); writes "
-             "patches.obj, visibility.txt and stats.json into a directory");
+      "vis",
+      "Conservative patch-to-patch visibility with blocker lists (paper §3-§5); writes "
+      "patches.obj, visibility.txt and stats.json into a directory");
   struct State {
     std::string scene, output;
     BspOptions bsp;
@@ -29,7 +31,10 @@ Action addVisCommand(CLI::App& app) {
   };
   auto s = std::make_shared<State>();
   s->bsp.minCoverage = kVisibilityMinCoverage;
-  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
+  cmd->add_option(
+         "scene", s->scene,
+         "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")
+      ->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--threads", s->propagation.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
@@ -51,12 +56,20 @@ Action addVisCommand(CLI::App& app) {
     s->propagation.progress = visBar.callback();
     ProgressBar blockerBar("blocker lists (per source patch)");
     s->propagation.blockerProgress = blockerBar.callback();
+    // visibility.txt is written while the blocker lists are built (they need not fit in memory),
+    // under a temporary name until complete: a failed run leaves no truncated (or stale)
+    // visibility.txt.
+    const std::filesystem::path dir = makeOutputDirectory(s->output);
+    const std::filesystem::path visPath = dir / "visibility.txt";
+    const std::filesystem::path partPath = dir / "visibility.txt.part";
+    std::filesystem::remove(visPath);
+    VisibilityTxtWriter writer(partPath.string());
+    s->propagation.interactionSink = [&writer](const BlockerLists& lists) { writer.add(lists); };
     const VisibilityGraph graph = computeVisibility(scene, sub, s->propagation);
     visBar.finish();
-
-    const std::filesystem::path dir = makeOutputDirectory(s->output);
+    writer.close();
+    std::filesystem::rename(partPath, visPath);
     writeObj(scene, (dir / "patches.obj").string());
-    writeVisibilityTxt(graph, (dir / "visibility.txt").string());
     const nlohmann::json stats = {{"scene", s->scene},
                                   {"subdivision", statsJson(sub.stats)},
                                   {"visibility", visibilityStatsJson(graph.stats)}};
@@ -74,13 +87,15 @@ Action addVisCommand(CLI::App& app) {
     fmt::print("pairs listed {} of {:.0f} ({:.2f} %): VISIBLE {}, PARTIAL {} ({:.1f} %)\n", listed,
                pairs, pairs > 0 ? 100.0 * double(listed) / pairs : 0.0, v.pairsVisible,
                v.pairsPartial, listed ? 100.0 * double(v.pairsPartial) / double(listed) : 0.0);
-    fmt::print("stabbing tests: {} cell-level, {} patch-level ({} unresolved); mean sequence {:.2f}\n",
-               v.cellStabbingTests, v.patchStabbingTests, v.unresolvedStabbing, v.meanSequenceLength);
+    fmt::print(
+        "stabbing tests: {} cell-level, {} patch-level ({} unresolved); mean sequence {:.2f}\n",
+        v.cellStabbingTests, v.patchStabbingTests, v.unresolvedStabbing, v.meanSequenceLength);
     fmt::print("blockers per PARTIAL pair {:.2f} (shaft cull {:.2f})\n", v.meanBlockersPerPartial,
                v.meanShaftCullPerPartial);
-    fmt::print("visibility {:.3f} s on {} threads (cells {:.3f}, patches {:.3f}, blockers {:.3f}); "
-               "wrote {}\n", v.seconds, v.threads, v.cellSeconds, v.patchSeconds, v.blockerSeconds,
-               dir.string());
+    fmt::print(
+        "visibility {:.3f} s on {} threads (cells {:.3f}, patches {:.3f}, blockers {:.3f}); "
+        "wrote {}\n",
+        v.seconds, v.threads, v.cellSeconds, v.patchSeconds, v.blockerSeconds, dir.string());
     return 0;
   };
 }

@@ -79,7 +79,7 @@ bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
   return boxesMeet(box_, bBox, eps_) && meetsInBox(b);
 }
 
-bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n) const {
+bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n, double len) const {
   // The hull's side planes first: they are prepared, and most separations are found there.
   const size_t planes = c_.size();
   for (size_t i = 0; i < planes; ++i) {
@@ -92,7 +92,6 @@ bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n) const {
     if (separates) return false;
   }
   // b's own plane: separated when the hull lies on one side of it (within e) and b on it.
-  const double len = length(n);
   if (!(len > 0)) return true;
   const double e = eps_ * len;
   const Range q = rangeOf(bv, n, bv[0]);

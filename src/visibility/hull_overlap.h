@@ -31,7 +31,12 @@ class PairHull {
   /// meets(b, box) == boxMeets(box) && meetsInBox(b).
   bool meetsInBox(const ConvexPolygon& b) const { return meetsInBox(b.vertices, b.plane.normal); }
   /// meetsInBox of the polygon with these vertices and plane normal.
-  bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal) const;
+  bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal) const {
+    return meetsInBox(vertices, normal, length(normal));
+  }
+  /// meetsInBox with the normal's length, length(normal), given (callers testing many pairs
+  /// keep it per patch).
+  bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal, double normalLength) const;
   /// The hull's bounding box (not grown by the tolerance).
   const Aabb& box() const { return box_; }
   /// Side planes kept (after removing repeats), for tests and statistics.

@@ -15,6 +15,11 @@ constexpr double kFlatAxisFraction = 1e-3;
 /// inputs: one huge outlier box makes the level-0 cells coarser, never more numerous).
 constexpr int kMaxDim = 1024;
 
+/// Levels whose non-empty cells hold at least this many entries on average keep per-cell
+/// bounds, which let queries skip or take whole cells; sparser levels are scanned row by row
+/// (a bounds test per cell would cost about what it saves).
+constexpr double kEntriesForCellBounds = 4.0;
+
 /// Relative margin on the query's low side for rounding in (t − origin) / cellSize.
 constexpr double kCellRounding = 1e-9;
 
@@ -92,6 +97,17 @@ PatchGrid::PatchGrid(const std::vector<Aabb>& boxes, double cellsPerPatch) {
     ids_[slot] = stored[i];
     boxes_[slot] = boxes[stored[i]];
   }
+  for (Level& l : levels_) {
+    const size_t cells = l.start.size() - 1;
+    size_t used = 0;
+    for (size_t c = 0; c < cells; ++c) used += l.start[c + 1] > l.start[c];
+    if (used == 0 ||
+        double(l.start.back() - l.start.front()) < kEntriesForCellBounds * double(used))
+      continue;
+    l.bounds.resize(cells);
+    for (size_t c = 0; c < cells; ++c)
+      for (uint32_t i = l.start[c]; i < l.start[c + 1]; ++i) l.bounds[c].add(boxes_[i]);
+  }
 }
 
 int PatchGrid::coordinate(const Level& l, int axis, double t) const {
@@ -102,11 +118,18 @@ int PatchGrid::coordinate(const Level& l, int axis, double t) const {
 }
 
 void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out) const {
-  if (box.empty()) return;
+  const size_t before = out.size();
+  out.resize(before + ids_.size());
+  out.resize(before + gatherInto(box, slack, out.data() + before));
+}
+
+size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out) const {
+  if (box.empty()) return 0;
   const Aabb& a = box;
   const double e = slack;
   const double lo[3] = {box.lo.x - slack, box.lo.y - slack, box.lo.z - slack};
   const double hi[3] = {box.hi.x + slack, box.hi.y + slack, box.hi.z + slack};
+  size_t count = 0;
   for (const Level& l : levels_) {
     if (l.start.front() == l.start.back()) continue;  // no patch at this level
     // A box stored in cell i starts in it and is at most one cell long: it lies in cells i and
@@ -117,20 +140,51 @@ void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out
       first[k] = coordinate(l, k, lo[k] - l.cellSize * (1 + kCellRounding));
       last[k] = coordinate(l, k, hi[k]);
     }
+    // Entries [begin, end) scanned without branches (each id written, the count advanced on a
+    // hit: hits are unpredictable). The comparisons are PairHull's box test.
+    auto scan = [&](uint32_t begin, uint32_t end) {
+      for (uint32_t i = begin; i < end; ++i) {
+        const Aabb& b = boxes_[i];
+        const bool hit = (a.lo.x <= b.hi.x + e) & (b.lo.x <= a.hi.x + e) & (a.lo.y <= b.hi.y + e) &
+                         (b.lo.y <= a.hi.y + e) & (a.lo.z <= b.hi.z + e) & (b.lo.z <= a.hi.z + e);
+        out[count] = ids_[i];
+        count += hit;
+      }
+    };
     for (int z = first[2]; z <= last[2]; ++z)
       for (int y = first[1]; y <= last[1]; ++y) {
-        // Cells x = first..last of one row are consecutive buckets: one run of entries.
-        const uint32_t begin = l.start[l.cell(first[0], y, z)];
-        const uint32_t end = l.start[l.cell(last[0], y, z) + 1];
-        for (uint32_t i = begin; i < end; ++i) {
-          const Aabb& b = boxes_[i];
-          // PairHull's box test, the same comparisons in the same order.
-          if (a.lo.x <= b.hi.x + e && b.lo.x <= a.hi.x + e && a.lo.y <= b.hi.y + e &&
-              b.lo.y <= a.hi.y + e && a.lo.z <= b.hi.z + e && b.lo.z <= a.hi.z + e)
-            out.push_back(ids_[i]);
+        const size_t firstCell = l.cell(first[0], y, z), lastCell = l.cell(last[0], y, z);
+        if (l.bounds.empty()) {
+          // Cells x = first..last of one row are consecutive buckets: one run of entries.
+          scan(l.start[firstCell], l.start[lastCell + 1]);
+          continue;
+        }
+        for (size_t c = firstCell; c <= lastCell; ++c) {
+          const uint32_t begin = l.start[c], end = l.start[c + 1];
+          if (begin == end) continue;
+          // Every entry's box b lies in the cell's bounds cb. If the box test fails for cb
+          // along an axis (a.lo > cb.hi + e, say), it fails for every b (b.hi <= cb.hi, and
+          // rounding b.hi + e is monotone): skip the cell. If cb lies within `a` (no slack),
+          // every b passes (a.lo <= b.lo <= b.hi <= b.hi + e and b.lo <= b.hi <= a.hi <=
+          // a.hi + e, for e >= 0 and boxes not empty, as stored ones are): take them all.
+          const Aabb& cb = l.bounds[c];
+          const bool meets = (a.lo.x <= cb.hi.x + e) & (cb.lo.x <= a.hi.x + e) &
+                             (a.lo.y <= cb.hi.y + e) & (cb.lo.y <= a.hi.y + e) &
+                             (a.lo.z <= cb.hi.z + e) & (cb.lo.z <= a.hi.z + e);
+          if (!meets) continue;
+          const bool within = e >= 0 && a.lo.x <= cb.lo.x && cb.hi.x <= a.hi.x &&
+                              a.lo.y <= cb.lo.y && cb.hi.y <= a.hi.y && a.lo.z <= cb.lo.z &&
+                              cb.hi.z <= a.hi.z;
+          if (within) {
+            std::copy(ids_.begin() + begin, ids_.begin() + end, out + count);
+            count += end - begin;
+          } else {
+            scan(begin, end);
+          }
         }
       }
   }
+  return count;
 }
 
 }  // namespace gv

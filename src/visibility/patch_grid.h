@@ -22,6 +22,12 @@ class PatchGrid {
   /// by `slack` on every side (touching counts as meeting; empty boxes meet nothing). The
   /// comparisons are PairHull's box test, so that a caller may skip its own.
   void gather(const Aabb& box, double slack, std::vector<uint32_t>& out) const;
+  /// The same patches as gather(), written to out[0, count) (in the same order); returns the
+  /// count. `out` must have room for patchCount() ids (a patch is written at most once, but
+  /// every candidate's slot is written before its box test decides whether it stays).
+  size_t gatherInto(const Aabb& box, double slack, uint32_t* out) const;
+  /// Patches stored (those with non-empty boxes).
+  size_t patchCount() const { return ids_.size(); }
 
   /// Grid levels (for tests).
   size_t levelCount() const { return levels_.size(); }
@@ -31,6 +37,9 @@ class PatchGrid {
     double cellSize = 0;
     int dims[3] = {1, 1, 1};
     std::vector<uint32_t> start;  ///< per cell, its first entry (CSR), and one past the last
+    /// Per cell, the union of its entries' boxes, when the level's non-empty cells hold
+    /// kEntriesForCellBounds entries or more on average (else empty, and rows are scanned whole).
+    std::vector<Aabb> bounds;
     size_t cell(int x, int y, int z) const { return (size_t(z) * dims[1] + y) * dims[0] + x; }
   };
   /// The cell coordinate along `axis` of level `l` holding coordinate t (clamped to the grid).

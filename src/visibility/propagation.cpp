@@ -14,8 +14,10 @@
 
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
+#include <tbb/concurrent_queue.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -24,12 +26,14 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 
 #include "quake/leaf_pvs.h"
 #include "util/timing.h"
+#include "visibility/blocker_lists.h"
 #include "visibility/facing_lines.h"
 #include "visibility/hull_overlap.h"
 #include "visibility/might_see.h"
@@ -38,10 +42,27 @@
 namespace gv {
 namespace {
 
+/// Blocker lists are built for this many entries of the sources' seen lists at a time (one
+/// pipeline token; a source's pairs come from its entries): small enough that the chunks in
+/// flight are little memory (at most this many pairs each), large enough to amortise the
+/// hand-over.
+constexpr uint64_t kSeenPerChunk = 1024;
+/// Chunks in flight per thread: room for threads to work ahead of a slow chunk that holds up
+/// the in-order hand-over.
+constexpr size_t kChunksInFlightPerThread = 3;
+/// Flags of the blocker stage's candidates: seen from the pair's S, from its T.
+constexpr uint8_t kFromS = 1, kFromT = 2;
+/// A membership flag costs about this fraction of a binary search in seen(T) (both per
+/// candidate; flags need a pass over seen(T) to set and one to clear).
+constexpr size_t kFlagsPerSearch = 4;
+
+/// A chunk whose id array grew past this (16 MiB) gives it back after the hand-over instead of
+/// keeping it for reuse.
+constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
+
 /// Above this many bits of per-directed-portal cell sets (2 x portals x cells; 2^32 bits =
 /// 512 MiB) the leaf-PVS cell search is not used.
 constexpr double kMaxPortalFlowBits = 4294967296.0;
-
 
 /// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
 struct CellPatch {
@@ -99,8 +120,8 @@ constexpr uint8_t seenFlags(uint32_t entry) {
 constexpr size_t kMaxPatches = size_t{1} << 30;
 
 struct PatchSearchResult {
-  std::vector<uint32_t> seen;                      ///< seenEntry(patch, flags), sorted by patch
-  std::vector<uint32_t> sameCellVisible;           ///< patches proven VISIBLE by the shortcut
+  std::vector<uint32_t> seen;             ///< seenEntry(patch, flags), sorted by patch
+  std::vector<uint32_t> sameCellVisible;  ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
   uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
 };
@@ -192,8 +213,9 @@ class PatchSearch {
     touchedCells_.clear();
     std::sort(result.seen.begin(), result.seen.end());
     std::sort(result.sameCellVisible.begin(), result.sameCellVisible.end());
-    result.sameCellVisible.erase(std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
-                                 result.sameCellVisible.end());
+    result.sameCellVisible.erase(
+        std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
+        result.sameCellVisible.end());
     result.stabbing = stabber_.stats();
     result.facingRuleTests = facingRuleTests_;
     return result;
@@ -385,7 +407,7 @@ class CellSearch {
 /// Sorts distinct ids in [0, 64 bits.size()): by std::sort when there are few, else by setting
 /// their bits in `bits` (all clear on entry and on return) and reading them back in order, which
 /// is cheaper once the ids are more than a sparse sample of the range.
-void sortIds(std::vector<uint32_t>& ids, std::vector<uint64_t>& bits) {
+void sortIds(std::span<uint32_t> ids, std::vector<uint64_t>& bits) {
   if (ids.size() < 64 || double(ids.size()) * std::log2(double(ids.size())) < double(bits.size())) {
     std::sort(ids.begin(), ids.end());
     return;
@@ -396,10 +418,10 @@ void sortIds(std::vector<uint32_t>& ids, std::vector<uint64_t>& bits) {
     lo = std::min(lo, id);
     hi = std::max(hi, id);
   }
-  ids.clear();
+  size_t k = 0;
   for (size_t word = lo >> 6; word <= (hi >> 6); ++word) {
     for (uint64_t b = bits[word]; b; b &= b - 1)
-      ids.push_back(static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b))));
+      ids[k++] = static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b)));
     bits[word] = 0;
   }
 }
@@ -443,9 +465,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   const auto start = Clock::now();
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : tbb::this_task_arena::max_concurrency();
+  const int threads =
+      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
   VisibilityGraph graph;
   VisibilityStats& st = graph.stats;
   if (n >= kMaxPatches)
@@ -467,17 +488,17 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   PortalReach reach;
   const double setBits = 2.0 * double(sub.portals.size()) * double(sub.cells.size());
   if (setBits <= kMaxPortalFlowBits) {
-    PrtFile graph;
-    graph.leafCount = graph.clusterCount = sub.cells.size();
-    graph.leafCluster.resize(sub.cells.size());
-    graph.clusterLeafs.resize(sub.cells.size());
+    PrtFile cellGraph;
+    cellGraph.leafCount = cellGraph.clusterCount = sub.cells.size();
+    cellGraph.leafCluster.resize(sub.cells.size());
+    cellGraph.clusterLeafs.resize(sub.cells.size());
     for (size_t c = 0; c < sub.cells.size(); ++c) {
-      graph.leafCluster[c] = static_cast<int>(c);
-      graph.clusterLeafs[c] = {static_cast<int>(c)};
+      cellGraph.leafCluster[c] = static_cast<int>(c);
+      cellGraph.clusterLeafs[c] = {static_cast<int>(c)};
     }
     for (const Portal& p : sub.portals)  // the polygon's normal points from back into front
-      graph.portals.push_back({p.polygon.vertices, static_cast<int>(p.back),
-                               static_cast<int>(p.front), 0});
+      cellGraph.portals.push_back(
+          {p.polygon.vertices, static_cast<int>(p.back), static_cast<int>(p.front), 0});
     LeafPvsOptions pvsOptions;
     pvsOptions.parallel = threads > 1;
     // Between waves of the search: progress, and the deadline (a wave is short).
@@ -488,7 +509,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
     };
     tbb::task_arena arena(threads);
     LeafPvsResult pvs;
-    arena.execute([&] { pvs = computeLeafPvs(graph, pvsOptions); });
+    arena.execute([&] { pvs = computeLeafPvs(cellGraph, pvsOptions); });
     cellReach.resize(sub.cells.size(), CellSet(sub.cells.size()));
     for (size_t c = 0; c < sub.cells.size(); ++c)
       for (uint32_t d : pvs.visibleLeafs[c]) cellReach[c].insert(d);
@@ -584,7 +605,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
-      n, threads, [&] {
+      n, threads,
+      [&] {
         PatchSearch w(sub, cellPatches, placements, reach, cellReach, tol);
         w.checkDeadline.deadline = options.deadline;
         return w;
@@ -635,92 +657,170 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   for (size_t p = 0; p < n; ++p)
     std::copy(scene.patches[p].polygon.vertices.begin(), scene.patches[p].polygon.vertices.end(),
               vertices.begin() + vertexStart[p]);
+  // The candidates' plane normals in one array (a Patch is far larger than its normal).
+  std::vector<Vec3> normals(n);
+  std::vector<double> normalLengths(n);
+  for (size_t p = 0; p < n; ++p) {
+    normals[p] = scene.patches[p].polygon.plane.normal;
+    normalLengths[p] = length(normals[p]);
+  }
   struct BlockerWorker {
-    std::vector<uint8_t> seenFromS;  ///< per patch: in seen(S) of the current source
-    std::vector<uint32_t> candidates, blockers;
-    std::vector<uint64_t> bits;  ///< one per patch, all clear between calls of sortIds
+    std::vector<uint8_t> seen;       ///< per patch: kFromS (in seen(S)) | kFromT (in seen(T))
+    std::vector<uint32_t> gathered;  ///< room for every patch: PatchGrid::gatherInto's output
+    std::vector<uint64_t> bits;      ///< one per patch, all clear between calls of sortIds
   };
-  std::vector<std::vector<Interaction>> perSource(n);
-  std::atomic<size_t> sourcesDone{0};
-  std::mutex blockerProgressMutex;
-  size_t sourcesReported = 0;
-  parallelFor(
-      n, threads,
-      [&] {
-        return BlockerWorker{
-            std::vector<uint8_t>(n, 0), {}, {}, std::vector<uint64_t>((n + 63) / 64, 0)};
-      },
-      [&](BlockerWorker& w, size_t si) {
-        if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
-          throw PropagationDeadlineExceeded();
-        if (options.blockerProgress) {
-          const size_t d = sourcesDone.load();
-          if (d % 64 == 0) {
-            std::lock_guard lock(blockerProgressMutex);
-            if (d > sourcesReported) options.blockerProgress(sourcesReported = d, n);
+  // Work is counted in entries of the seen lists, all sources' lists one after another: source
+  // s holds positions [seenStart[s], seenStart[s + 1]), and its pairs (s, t) come from them.
+  std::vector<uint64_t> seenStart(n + 1, 0);
+  for (size_t p = 0; p < n; ++p) seenStart[p + 1] = seenStart[p] + seen[p].seen.size();
+  struct Chunk {
+    uint64_t begin = 0, end = 0;  ///< positions [begin, end) of the seen lists
+    size_t sourcesDone = 0;       ///< sources whose lists end by `end`
+    BlockerLists lists;
+    uint64_t visible = 0, partial = 0, sameCell = 0;
+  };
+  // The interactions (s, t), t > s, for entries [from, to) of seen(s), in t order, with their
+  // blocker lists, appended to `chunk`.
+  auto blockersOf = [&](BlockerWorker& w, uint32_t s, size_t from, size_t to, Chunk& chunk) {
+    const ConvexPolygon& sp = scene.patches[s].polygon;
+    for (uint32_t e : seen[s].seen) w.seen[seenPatch(e)] = kFromS;
+    for (size_t k = from; k < to; ++k) {
+      const uint32_t e = seen[s].seen[k];
+      const uint32_t t = seenPatch(e);
+      const uint8_t f = seenFlags(e);
+      if (t <= s) continue;
+      // Both searches are conservative and a sightline runs both ways, so a real pair is seen
+      // front to front from each end: requiring both is exact pruning, not a guess.
+      const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
+      const ConvexPolygon& tp = scene.patches[t].polygon;
+      if (!front || !canFace(sp, tp, tol.length())) continue;
+      BlockerLists& lists = chunk.lists;
+      lists.addPair(s, t);  // its blockers are appended below, straight into the chunk
+      if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
+        ++chunk.sameCell;
+      } else {
+        const PairHull hull(sp, tp, tol);
+        Aabb box = patchBoxes[s];
+        box.add(patchBoxes[t]);
+        // The slack is PairHull's box tolerance: the grid does PairHull's box test.
+        const std::span<uint32_t> candidates(w.gathered.data(),
+                                             grid.gatherInto(box, tol.length(), w.gathered.data()));
+        const auto& b = seen[t].seen;
+        sortIds(candidates, w.bits);  // blockers come out sorted
+        // Seen from T: by flags when there are many candidates to ask about (setting them
+        // costs a pass over seen(T)), else by searches in the sorted seen(T).
+        const bool flagT = candidates.size() * kFlagsPerSearch > b.size();
+        if (flagT)
+          for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
+        auto fromT = b.begin();  // candidates rise: each search starts where the last ended
+        for (uint32_t c : candidates) {
+          if (c == s || c == t) continue;
+          if (flagT) {
+            if (!w.seen[c]) continue;
+          } else if (!w.seen[c]) {
+            fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
+            if (fromT == b.end() || seenPatch(*fromT) != c) continue;
           }
+          const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
+                                         vertices.data() + vertexStart[c + 1]);
+          if (hull.meetsInBox(cv, normals[c], normalLengths[c])) lists.addBlocker(c);
         }
-        const auto s = static_cast<uint32_t>(si);
-        const ConvexPolygon& sp = scene.patches[s].polygon;
-        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 1;
-        for (uint32_t e : seen[s].seen) {
-          const uint32_t t = seenPatch(e);
-          const uint8_t f = seenFlags(e);
-          if (t <= s) continue;
-          // Both searches are conservative and a sightline runs both ways, so a real pair is seen
-          // front to front from each end: requiring both is exact pruning, not a guess.
-          const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
-          const ConvexPolygon& tp = scene.patches[t].polygon;
-          if (!front || !canFace(sp, tp, tol.length())) continue;
-          Interaction in{s, t, {}};
-          if (!isSameCellVisible(s, t) && !isSameCellVisible(t, s)) {
-            const PairHull hull(sp, tp, tol);
-            Aabb box = patchBoxes[s];
-            box.add(patchBoxes[t]);
-            w.candidates.clear();
-            // The slack is PairHull's box tolerance: the grid does PairHull's box test.
-            grid.gather(box, tol.length(), w.candidates);
-            const auto& b = seen[t].seen;
-            auto fromT = b.begin();  // candidates rise: each search starts where the last ended
-            w.blockers.clear();
-            sortIds(w.candidates, w.bits);  // blockers come out sorted
-            for (uint32_t c : w.candidates) {
-              if (c == s || c == t) continue;
-              if (!w.seenFromS[c]) {
-                fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
-                if (fromT == b.end() || seenPatch(*fromT) != c) continue;
-              }
-              const std::span<const Vec3> cv(vertices.data() + vertexStart[c],
-                                             vertices.data() + vertexStart[c + 1]);
-              if (hull.meetsInBox(cv, scene.patches[c].polygon.plane.normal))
-                w.blockers.push_back(c);
-            }
-            // Exactly sized: blocker lists are most of the memory on big scenes.
-            in.blockers.assign(w.blockers.begin(), w.blockers.end());
-          }
-          perSource[s].push_back(std::move(in));
-        }
-        for (uint32_t e : seen[s].seen) w.seenFromS[seenPatch(e)] = 0;
-        ++sourcesDone;
-      });
-  if (options.blockerProgress) options.blockerProgress(n, n);
-  size_t interactions = 0;
-  for (const auto& v : perSource) interactions += v.size();
-  graph.interactions.reserve(interactions);
-  for (auto& v : perSource) {
-    for (Interaction& in : v) graph.interactions.push_back(std::move(in));
-    std::vector<Interaction>().swap(v);
-  }
-  uint64_t blockerSum = 0;
-  for (const Interaction& in : graph.interactions) {
-    if (in.blockers.empty()) {
-      ++st.pairsVisible;
-    } else {
-      ++st.pairsPartial;
-      blockerSum += in.blockers.size();
+        if (flagT)
+          for (uint32_t entry : b) w.seen[seenPatch(entry)] &= kFromS;
+      }
+      ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
     }
-    st.sameCellShortcuts += in.blockers.empty() && (isSameCellVisible(in.s, in.r) || isSameCellVisible(in.r, in.s));
+    for (uint32_t e : seen[s].seen) w.seen[seenPatch(e)] = 0;
+  };
+  // Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
+  // handed on (to the sink or into the graph) one at a time in order, so the output is (s, r)
+  // sorted whatever the schedule, and with a sink only the chunks in flight are held: each is at
+  // most kSeenPerChunk pairs, a source that saw many patches being cut into several. Chunks are
+  // reused (no allocation once their arrays have grown), unless they grew past kKeptIdsPerChunk.
+  tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers([n, &grid] {
+    return BlockerWorker{std::vector<uint8_t>(n, 0), std::vector<uint32_t>(grid.patchCount()),
+                         std::vector<uint64_t>((n + 63) / 64, 0)};
+  });
+  std::vector<std::unique_ptr<Chunk>> chunks;  // every chunk made (touched by the first stage)
+  tbb::concurrent_queue<Chunk*> freeChunks;    // handed back by the last stage
+  std::vector<std::pair<uint32_t, uint32_t>> partialPairs;  // in order, for the shaft sample
+  uint64_t blockerSum = 0;
+  uint64_t nextPosition = 0;
+  size_t sourcesReported = 0;
+  {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_pipeline(
+          kChunksInFlightPerThread * size_t(threads),
+          tbb::make_filter<void, Chunk*>(
+              tbb::filter_mode::serial_in_order,
+              [&](tbb::flow_control& fc) -> Chunk* {
+                if (nextPosition >= seenStart[n]) {
+                  fc.stop();
+                  return nullptr;
+                }
+                Chunk* chunk = nullptr;
+                if (!freeChunks.try_pop(chunk)) {
+                  chunks.push_back(std::make_unique<Chunk>());
+                  chunk = chunks.back().get();
+                }
+                chunk->begin = nextPosition;
+                chunk->end = nextPosition = std::min(seenStart[n], nextPosition + kSeenPerChunk);
+                // Sources s with seenStart[s + 1] <= end.
+                chunk->sourcesDone =
+                    size_t(std::upper_bound(seenStart.begin() + 1, seenStart.end(), chunk->end) -
+                           (seenStart.begin() + 1));
+                return chunk;
+              }) &
+              tbb::make_filter<Chunk*, Chunk*>(
+                  tbb::filter_mode::parallel,
+                  [&](Chunk* chunk) {
+                    if (options.deadline != Clock::time_point::max() &&
+                        Clock::now() > options.deadline)
+                      throw PropagationDeadlineExceeded();
+                    BlockerWorker& w = blockerWorkers.local();
+                    // The first source with entries at or after `begin`, then on while its
+                    // entries start before `end`.
+                    size_t s =
+                        size_t(std::upper_bound(seenStart.begin(), seenStart.end(), chunk->begin) -
+                               seenStart.begin()) -
+                        1;
+                    for (; s < n && seenStart[s] < chunk->end; ++s) {
+                      const uint64_t from = std::max(chunk->begin, seenStart[s]);
+                      const uint64_t to = std::min(chunk->end, seenStart[s + 1]);
+                      if (from < to)
+                        blockersOf(w, static_cast<uint32_t>(s), size_t(from - seenStart[s]),
+                                   size_t(to - seenStart[s]), *chunk);
+                    }
+                    return chunk;
+                  }) &
+              tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, [&](Chunk* chunk) {
+                const BlockerLists& lists = chunk->lists;
+                st.pairsVisible += chunk->visible;
+                st.pairsPartial += chunk->partial;
+                st.sameCellShortcuts += chunk->sameCell;
+                blockerSum += lists.idCount();
+                for (size_t k = 0; k < lists.size(); ++k)
+                  if (!lists.blockers(k).empty()) partialPairs.emplace_back(lists.s(k), lists.r(k));
+                if (options.interactionSink) {
+                  options.interactionSink(lists);
+                } else {
+                  for (size_t k = 0; k < lists.size(); ++k) {
+                    const auto ids = lists.blockers(k);
+                    graph.interactions.push_back(
+                        {lists.s(k), lists.r(k), std::vector<uint32_t>(ids.begin(), ids.end())});
+                  }
+                }
+                if (options.blockerProgress && chunk->sourcesDone > sourcesReported)
+                  options.blockerProgress(sourcesReported = chunk->sourcesDone, n);
+                if (chunk->lists.idCapacity() > kKeptIdsPerChunk) chunk->lists = {};
+                chunk->lists.clear();
+                chunk->visible = chunk->partial = chunk->sameCell = 0;
+                freeChunks.push(chunk);
+              }));
+    });
   }
+  if (options.blockerProgress && sourcesReported < n) options.blockerProgress(n, n);
   st.meanBlockersPerPartial = st.pairsPartial ? double(blockerSum) / double(st.pairsPartial) : 0;
   st.blockerSeconds = secondsSince(blockerStart);
 
@@ -728,11 +828,11 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
   if (st.pairsPartial > 0 && options.shaftSamples > 0) {
     const uint64_t stride = std::max<uint64_t>(1, st.pairsPartial / options.shaftSamples);
     uint64_t k = 0, sum = 0;
-    for (const Interaction& in : graph.interactions) {
-      if (in.blockers.empty() || (k++ % stride) != 0) continue;
-      const PairHull hull(scene.patches[in.s].polygon, scene.patches[in.r].polygon, tol);
+    for (const auto& [ps, pr] : partialPairs) {
+      if ((k++ % stride) != 0) continue;
+      const PairHull hull(scene.patches[ps].polygon, scene.patches[pr].polygon, tol);
       for (uint32_t c = 0; c < n; ++c)
-        if (c != in.s && c != in.r && hull.meets(scene.patches[c].polygon, patchBoxes[c])) ++sum;
+        if (c != ps && c != pr && hull.meets(scene.patches[c].polygon, patchBoxes[c])) ++sum;
       ++st.shaftSamples;
     }
     st.meanShaftCullPerPartial = double(sum) / double(st.shaftSamples);

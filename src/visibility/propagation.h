@@ -9,6 +9,7 @@
 #include "bsp/subdivision.h"
 #include "scene/scene.h"
 #include "util/timing.h"
+#include "visibility/blocker_lists.h"
 #include "visibility/visibility_graph.h"
 
 namespace gv {
@@ -28,6 +29,12 @@ struct PropagationOptions {
   /// Called with (done, total) source patches of the blocker-list phase (§5, after the patch
   /// searches) now and then, from one thread at a time, rising.
   std::function<void(size_t, size_t)> blockerProgress;
+  /// When set, the interactions are handed to it instead of kept in VisibilityGraph::
+  /// interactions (which stays empty; the statistics are the same): all of them, in (s, r)
+  /// order, a few sources' at a time, from one thread at a time while later sources are being
+  /// worked on. Only the lists in flight are then held: `globalvis vis` writes visibility.txt
+  /// this way, since on big scenes the blocker lists outgrow memory.
+  std::function<void(const BlockerLists&)> interactionSink;
   /// The searches give up (computeVisibility throws PropagationDeadlineExceeded) once the clock
   /// passes this: a time budget that also holds inside one long search (`globalvis bench`).
   Clock::time_point deadline = Clock::time_point::max();

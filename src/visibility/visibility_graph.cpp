@@ -2,8 +2,9 @@
 #include "visibility/visibility_graph.h"
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -12,36 +13,64 @@
 
 namespace gv {
 
+namespace {
+
+/// The buffer is written out in blocks of about this size: the file has hundreds of millions of
+/// ids on big scenes, so numbers are formatted by hand (fmt::format_int) into one buffer.
+constexpr size_t kFlushBytes = size_t{1} << 20;
+
+}  // namespace
+
+VisibilityTxtWriter::VisibilityTxtWriter(const std::string& path) : path_(path) {
+  file_ = std::fopen(path.c_str(), "wb");
+  if (!file_) throw InputError(path, 0, std::string("cannot write: ") + std::strerror(errno));
+  buffer_.reserve(kFlushBytes + 64);
+  buffer_ += "# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n";
+  buffer_ += "# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n";
+}
+
+VisibilityTxtWriter::~VisibilityTxtWriter() {
+  if (file_) std::fclose(file_);  // not closed: an exception is already on its way
+}
+
+void VisibilityTxtWriter::flush() {
+  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
+    throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
+  buffer_.clear();
+}
+
+void VisibilityTxtWriter::put(uint64_t v, char after) {
+  const fmt::format_int digits(v);
+  buffer_.append(digits.data(), digits.size());
+  buffer_.push_back(after);
+}
+
+void VisibilityTxtWriter::add(uint32_t s, uint32_t r, std::span<const uint32_t> blockers) {
+  put(s, ' ');
+  put(r, ' ');
+  put(blockers.size(), blockers.empty() ? '\n' : ' ');
+  for (size_t k = 0; k < blockers.size(); ++k)
+    put(blockers[k], k + 1 == blockers.size() ? '\n' : ' ');
+  if (buffer_.size() >= kFlushBytes) flush();
+}
+
+void VisibilityTxtWriter::add(const BlockerLists& lists) {
+  for (size_t k = 0; k < lists.size(); ++k) add(lists.s(k), lists.r(k), lists.blockers(k));
+}
+
+void VisibilityTxtWriter::close() {
+  if (!file_) return;
+  flush();
+  std::FILE* f = file_;
+  file_ = nullptr;
+  if (std::fclose(f) != 0)
+    throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
+}
+
 void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path) {
-  try {
-    auto out = fmt::output_file(path);
-    out.print("# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");
-    out.print("# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n");
-    // Numbers formatted by hand into one buffer written in large blocks: the file has tens of
-    // millions of ids on big scenes, and a format-string parse per id dominated the writing.
-    std::string buffer;
-    constexpr size_t kFlushBytes = size_t{1} << 20;
-    buffer.reserve(kFlushBytes + 64);
-    auto put = [&](uint64_t v, char after) {
-      const fmt::format_int digits(v);
-      buffer.append(digits.data(), digits.size());
-      buffer.push_back(after);
-      if (buffer.size() >= kFlushBytes) {
-        out.print("{}", buffer);
-        buffer.clear();
-      }
-    };
-    for (const Interaction& in : graph.interactions) {
-      put(in.s, ' ');
-      put(in.r, ' ');
-      put(in.blockers.size(), in.blockers.empty() ? '\n' : ' ');
-      for (size_t k = 0; k < in.blockers.size(); ++k)
-        put(in.blockers[k], k + 1 == in.blockers.size() ? '\n' : ' ');
-    }
-    out.print("{}", buffer);
-  } catch (const std::system_error& e) {
-    throw InputError(path, 0, std::string("cannot write: ") + e.what());
-  }
+  VisibilityTxtWriter out(path);
+  for (const Interaction& in : graph.interactions) out.add(in);
+  out.close();
 }
 
 namespace {

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
+#include "visibility/blocker_lists.h"
 #include "visibility/stabbing.h"
 
 namespace gv {
@@ -34,21 +36,21 @@ struct SequenceHistogram {
 /// The figures of §7.2 and §7.3 for one run.
 struct VisibilityStats {
   size_t patches = 0, cells = 0, portals = 0;
-  uint64_t cellPairsVisible = 0;       ///< ordered (source, reached) cell pairs, source included
-  uint64_t cellStabbingTests = 0;      ///< portal-sequence tests of the cell-to-cell search
-  uint64_t patchStabbingTests = 0;     ///< tests of the patch searches (portals and targets)
+  uint64_t cellPairsVisible = 0;    ///< ordered (source, reached) cell pairs, source included
+  uint64_t cellStabbingTests = 0;   ///< portal-sequence tests of the cell-to-cell search
+  uint64_t patchStabbingTests = 0;  ///< tests of the patch searches (portals and targets)
   /// Of those, target tests in the source's own cell decided by the two-polygon facing rule
   /// (no portal between: exact without the stabbing kernel; not in patchStabbing).
   uint64_t patchFacingRuleTests = 0;
   /// Patches a source patch's search saw (either facing), mean over sources: the candidates of
   /// its blocker lists.
   double meanPatchesSeen = 0;
-  uint64_t unresolvedStabbing = 0;     ///< tests answered "maybe" (counted as visible)
+  uint64_t unresolvedStabbing = 0;            ///< tests answered "maybe" (counted as visible)
   StabbingStats cellStabbing, patchStabbing;  ///< how the tests were decided, per search level
-  double meanSequenceLength = 0;       ///< over the cell-level tests, in portals
-  SequenceHistogram cellHistogram;     ///< Fig. 13
+  double meanSequenceLength = 0;              ///< over the cell-level tests, in portals
+  SequenceHistogram cellHistogram;            ///< Fig. 13
   uint64_t pairsVisible = 0, pairsPartial = 0;
-  uint64_t sameCellShortcuts = 0;      ///< pairs declared VISIBLE by the same-empty-cell rule
+  uint64_t sameCellShortcuts = 0;  ///< pairs declared VISIBLE by the same-empty-cell rule
   double meanBlockersPerPartial = 0;
   double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
   uint64_t shaftSamples = 0;
@@ -63,6 +65,32 @@ struct VisibilityGraph {
 
 /// Writes `visibility.txt` in the paper's format (DESIGN.md contract): `S R n b1 ... bn`.
 void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path);
+
+/// visibility.txt written as it is produced: the header when constructed, one line per add() in
+/// the order given (the contract's (s, r) order is the caller's), the rest on close(). Lets
+/// `globalvis vis` write the blocker lists without holding them all (PropagationOptions::
+/// interactionSink). Errors (open, write) throw InputError(path, 0, ...).
+class VisibilityTxtWriter {
+ public:
+  explicit VisibilityTxtWriter(const std::string& path);
+  ~VisibilityTxtWriter();
+  VisibilityTxtWriter(const VisibilityTxtWriter&) = delete;
+  VisibilityTxtWriter& operator=(const VisibilityTxtWriter&) = delete;
+  /// One line: `s r n b1 ... bn`.
+  void add(uint32_t s, uint32_t r, std::span<const uint32_t> blockers);
+  void add(const Interaction& in) { add(in.s, in.r, in.blockers); }
+  /// A line per pair of `lists`, in their order.
+  void add(const BlockerLists& lists);
+  /// Flushes and closes the file; throws if any write failed. Idempotent.
+  void close();
+
+ private:
+  void put(uint64_t v, char after);
+  void flush();
+  std::string path_;
+  std::FILE* file_ = nullptr;
+  std::string buffer_;
+};
 /// The statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
 nlohmann::json visibilityStatsJson(const VisibilityStats& stats);
 /// Reads a visibility.txt back (for `verify`); throws InputError on malformed lines.

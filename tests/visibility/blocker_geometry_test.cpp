@@ -198,33 +198,41 @@ TEST(BlockerGrid, GatherReturnsExactlyTheMeetingBoxesOnce) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(0, 1);
   size_t returned = 0, queries = 0;
-  for (const bool flat : {false, true}) {
-    const std::vector<Aabb> boxes = randomBoxes(rng, 3000, flat);
-    const PatchGrid grid(boxes);
-    EXPECT_GT(grid.levelCount(), 2u);
-    for (int q = 0; q < 400; ++q) {
-      Aabb box;
-      const Vec3 lo{u(rng) * 120 - 10, u(rng) * 120 - 10, flat ? 3.0 : u(rng) * 120 - 10};
-      const double size = q % 10 == 0 ? 80 : 10 * u(rng);
-      box.add(lo);
-      box.add(lo + Vec3{size * u(rng), size * u(rng), flat ? 0.0 : size * u(rng)});
-      const double e = q % 3 == 0 ? 0.0 : 0.01;
-      std::vector<uint32_t> got;
-      grid.gather(box, e, got);
-      std::sort(got.begin(), got.end());
-      EXPECT_TRUE(std::adjacent_find(got.begin(), got.end()) == got.end()) << "repeats";
-      std::vector<uint32_t> want;
-      for (uint32_t p = 0; p < boxes.size(); ++p) {
-        const Aabb& b = boxes[p];
-        if (box.lo.x <= b.hi.x + e && b.lo.x <= box.hi.x + e && box.lo.y <= b.hi.y + e &&
-            b.lo.y <= box.hi.y + e && box.lo.z <= b.hi.z + e && b.lo.z <= box.hi.z + e)
-          want.push_back(p);
+  // Cells per patch: the default (sparse fine levels scanned row by row, dense coarse ones with
+  // per-cell bounds), and few cells, so that every level skips or takes whole cells.
+  for (const double cellsPerPatch : {2.0, 0.02})
+    for (const bool flat : {false, true}) {
+      const std::vector<Aabb> boxes = randomBoxes(rng, 3000, flat);
+      const PatchGrid grid(boxes, cellsPerPatch);
+      EXPECT_GT(grid.levelCount(), 2u);
+      for (int q = 0; q < 400; ++q) {
+        Aabb box;
+        const Vec3 lo{u(rng) * 120 - 10, u(rng) * 120 - 10, flat ? 3.0 : u(rng) * 120 - 10};
+        const double size = q % 10 == 0 ? 80 : 10 * u(rng);
+        box.add(lo);
+        box.add(lo + Vec3{size * u(rng), size * u(rng), flat ? 0.0 : size * u(rng)});
+        const double e = q % 3 == 0 ? 0.0 : 0.01;
+        std::vector<uint32_t> got;
+        grid.gather(box, e, got);
+        std::sort(got.begin(), got.end());
+        EXPECT_TRUE(std::adjacent_find(got.begin(), got.end()) == got.end()) << "repeats";
+        std::vector<uint32_t> want;
+        for (uint32_t p = 0; p < boxes.size(); ++p) {
+          const Aabb& b = boxes[p];
+          if (box.lo.x <= b.hi.x + e && b.lo.x <= box.hi.x + e && box.lo.y <= b.hi.y + e &&
+              b.lo.y <= box.hi.y + e && box.lo.z <= b.hi.z + e && b.lo.z <= box.hi.z + e)
+            want.push_back(p);
+        }
+        EXPECT_EQ(got, want) << "query " << q << (flat ? " (flat scene)" : "") << " cells/patch "
+                             << cellsPerPatch;
+        std::vector<uint32_t> into(grid.patchCount());
+        into.resize(grid.gatherInto(box, e, into.data()));
+        std::sort(into.begin(), into.end());
+        EXPECT_EQ(into, want);
+        returned += got.size();
+        ++queries;
       }
-      EXPECT_EQ(got, want) << "query " << q << (flat ? " (flat scene)" : "");
-      returned += got.size();
-      ++queries;
     }
-  }
   EXPECT_GT(returned, queries * 5);  // queries are not trivially empty
 }
 
