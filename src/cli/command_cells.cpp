@@ -27,7 +27,10 @@ Action addCellsCommand(CLI::App& app) {
     bool json = false;
   };
   auto s = std::make_shared<State>();
-  cmd->add_option("scene", s->scene, "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")->required();
+  cmd->add_option(
+         "scene", s->scene,
+         "Scene file (.obj with .mtl, Quake .map, or a mesh Assimp reads: .ply, .gltf, .glb ...)")
+      ->required();
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--min-coverage", s->options.minCoverage,
                   "Stop rule: split a cell on a plane only if its patches cover at least this "

@@ -39,7 +39,8 @@ const std::string& describe(const std::string& name) {
 }  // namespace
 
 Action addGenCommand(CLI::App& app) {
-  auto* gen = app.add_subcommand("gen", "Generate a built-in scene (cornell, office, maze) as OBJ+MTL");
+  auto* gen =
+      app.add_subcommand("gen", "Generate a built-in scene (cornell, office, maze) as OBJ+MTL");
   gen->require_subcommand(1);
   auto s = std::make_shared<GenState>();
 
@@ -50,26 +51,36 @@ Action addGenCommand(CLI::App& app) {
   auto* office = gen->add_subcommand("office", describe("office"));
   addOutputOption(office, *s);
   OfficeOptions& o = s->office;
-  auto* patches = office->add_option("--patches", s->officePatches,
-                                     "Choose floors/rows/columns to get about this many patches")
+  auto* patches = office
+                      ->add_option("--patches", s->officePatches,
+                                   "Choose floors/rows/columns to get about this many patches")
                       ->check(CLI::Range(size_t{1}, size_t{100'000'000}));
-  office->add_option("--floors", o.floors, "Storeys")->check(CLI::Range(1, 10000))->excludes(patches);
-  office->add_option("--rows", o.rows, "Rows of rooms, each with its corridor")->check(CLI::Range(1, 10000))->excludes(patches);
-  office->add_option("--columns", o.columns, "Rooms per row")->check(CLI::Range(1, 10000))->excludes(patches);
+  office->add_option("--floors", o.floors, "Storeys")
+      ->check(CLI::Range(1, 10000))
+      ->excludes(patches);
+  office->add_option("--rows", o.rows, "Rows of rooms, each with its corridor")
+      ->check(CLI::Range(1, 10000))
+      ->excludes(patches);
+  office->add_option("--columns", o.columns, "Rooms per row")
+      ->check(CLI::Range(1, 10000))
+      ->excludes(patches);
   office->add_option("--seed", o.seed, "Seed for door positions and furniture");
-  office->add_option("--furniture-per-room", o.furniturePerRoom, "Furniture boxes per room")->check(CLI::Range(0, 100));
+  office->add_option("--furniture-per-room", o.furniturePerRoom, "Furniture boxes per room")
+      ->check(CLI::Range(0, 100));
   office->add_flag("!--no-doors", o.doors, "Seal every room (no doors)");
   office->add_flag("!--no-windows", o.windows, "No interior windows between rooms");
   office->add_flag("!--no-furniture", o.furniture, "No furniture");
   office->add_flag("!--no-lights", o.lights, "No ceiling lights");
-  office->add_option("--light-emission", o.lightEmission, "Emitted radiosity of the lights")->check(CLI::NonNegativeNumber);
+  office->add_option("--light-emission", o.lightEmission, "Emitted radiosity of the lights")
+      ->check(CLI::NonNegativeNumber);
 
   auto* maze = gen->add_subcommand("maze", describe("maze"));
   addOutputOption(maze, *s);
   maze->add_option("--width", s->maze.width, "Cells along x")->check(CLI::Range(1, 100000));
   maze->add_option("--height", s->maze.height, "Cells along y")->check(CLI::Range(1, 100000));
   maze->add_option("--seed", s->maze.seed, "Seed of the maze and the lights");
-  maze->add_option("--lights", s->maze.lights, "Light panels (0: one per 16 cells)")->check(CLI::Range(0, 1000000));
+  maze->add_option("--lights", s->maze.lights, "Light panels (0: one per 16 cells)")
+      ->check(CLI::Range(0, 1000000));
 
   return [s, cornell, office, maze]() {
     const auto start = Clock::now();

@@ -13,7 +13,6 @@
 #include "radiosity/radiosity_io.h"
 #include "raycast/embree_scene.h"
 #include "report/run_files.h"
-#include "scene/contact_split.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 #include "util/timing.h"
@@ -60,11 +59,7 @@ Action addPhotonsCommand(CLI::App& app) {
   cmd->add_flag("--no-contact-split", s->noContactSplit,
                 "Keep the patches whole (as `globalvis radiosity --no-contact-split`)");
   return [s] {
-    const Scene scene = [&] {
-      Scene loaded = loadScene(s->scene);
-      if (!s->noContactSplit) splitPatchesAtContacts(loaded);
-      return loaded;
-    }();
+    const Scene scene = loadScene(s->scene, !s->noContactSplit);
     if (scene.patches.empty()) throw InputError(s->scene, 0, "the scene has no patches");
     // Read the run to compare before the long work, so that a bad directory fails at once.
     std::vector<Rgb> solver;

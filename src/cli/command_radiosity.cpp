@@ -17,7 +17,6 @@
 #include "radiosity/shaft_visibility.h"
 #include "raycast/embree_scene.h"
 #include "render/radiosity_pictures.h"
-#include "scene/contact_split.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
 #include "util/progress_bar.h"
@@ -90,11 +89,7 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s] {
-    const Scene scene = [&] {
-      Scene loaded = loadScene(s->scene);
-      if (!s->noContactSplit) splitPatchesAtContacts(loaded);
-      return loaded;
-    }();
+    const Scene scene = loadScene(s->scene, !s->noContactSplit);
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     // Progress (a bar per refinement round, a line per round) only on a terminal.
     const bool progress = !s->quiet && stderrIsTerminal();

@@ -15,9 +15,10 @@ namespace gv::cli {
 
 Action addVerifyCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "verify", "Check a `vis` result (DIR/patches.obj + DIR/visibility.txt) by ray casting: no "
-                "sampled sightline's pair missing, VISIBLE pairs unblocked, first hits in the "
-                "blocker lists. Exit code 1 on any violation");
+      "verify",
+      "Check a `vis` result (DIR/patches.obj + DIR/visibility.txt) by ray casting: no "
+      "sampled sightline's pair missing, VISIBLE pairs unblocked, first hits in the "
+      "blocker lists. Exit code 1 on any violation");
   struct State {
     std::string dir;
     VerifyOptions options;
@@ -25,8 +26,10 @@ Action addVerifyCommand(CLI::App& app) {
   };
   auto s = std::make_shared<State>();
   cmd->add_option("dir", s->dir, "Output directory of `globalvis vis`")->required();
-  cmd->add_option("--rays", s->options.rays, "Random rays from patches")->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
-  cmd->add_option("--segments", s->options.segments, "Random segments between listed pairs")->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
+  cmd->add_option("--rays", s->options.rays, "Random rays from patches")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
+  cmd->add_option("--segments", s->options.segments, "Random segments between listed pairs")
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
   cmd->add_option("--seed", s->options.seed, "Random seed");
   cmd->add_flag("--json", s->json, "Print the report as JSON on stdout");
   return [s] {
@@ -35,8 +38,9 @@ Action addVerifyCommand(CLI::App& app) {
     const Scene scene = importObj(objPath);
     const ImportReport& r = scene.report;
     if (r.droppedDegenerate || r.splitNonConvex || r.triangulatedNonPlanar)
-      throw InputError(objPath, 0, "not a patch file written by `globalvis vis` (its faces are not "
-                                   "all convex planar patches, so face k would not be patch k)");
+      throw InputError(objPath, 0,
+                       "not a patch file written by `globalvis vis` (its faces are not "
+                       "all convex planar patches, so face k would not be patch k)");
     const VisibilityGraph graph = readVisibilityTxt((dir / "visibility.txt").string());
     const VerifyReport v = verifyVisibility(scene, graph, s->options);
     if (s->json) {
@@ -56,9 +60,10 @@ Action addVerifyCommand(CLI::App& app) {
     }
     fmt::print("rays {} ({} met a patch's front first): pairs missing {}\n", v.rays,
                v.raysHittingFront, v.missingPairs);
-    fmt::print("segments {} between listed pairs ({} blocked): blocked VISIBLE pairs {}, "
-               "first hits missing from blocker lists {}\n", v.segments, v.blockedSegments,
-               v.blockedVisible, v.missingBlockers);
+    fmt::print(
+        "segments {} between listed pairs ({} blocked): blocked VISIBLE pairs {}, "
+        "first hits missing from blocker lists {}\n",
+        v.segments, v.blockedSegments, v.blockedVisible, v.missingBlockers);
     if (v.invalidPairs) fmt::print("pairs naming patches that do not exist: {}\n", v.invalidPairs);
     for (const std::string& e : v.examples) fmt::print("  {}\n", e);
     fmt::print("{}\n", v.ok() ? "OK: no violation" : "FAILED: violations found");

@@ -27,7 +27,7 @@ Action addVisCommand(CLI::App& app) {
     std::string scene, output;
     BspOptions bsp;
     PropagationOptions propagation;
-    bool json = false;
+    bool json = false, contactSplit = false;
   };
   auto s = std::make_shared<State>();
   s->bsp.minCoverage = kVisibilityMinCoverage;
@@ -43,8 +43,12 @@ Action addVisCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
+  cmd->add_flag("--contact-split", s->contactSplit,
+                "Cut patches along the outlines of the patches resting on them first, as "
+                "`radiosity` does (scene/contact_split.h): more patches, much shorter blocker "
+                "lists, and the same patches as a radiosity run");
   return [s] {
-    const Scene scene = loadScene(s->scene);
+    const Scene scene = loadScene(s->scene, s->contactSplit);
     for (const std::string& w : scene.report.warnings) fmt::print(stderr, "warning: {}\n", w);
     ProgressBar bspBar("BSP");
     if (bspBar.enabled()) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };

@@ -3,11 +3,12 @@
 #include <tiny_obj_loader.h>
 
 #include <filesystem>
-#include <set>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "quake/map_to_scene.h"
+#include "scene/contact_split.h"
 #include "scene/face_to_patches.h"
 #include "scene/input_error.h"
 #include "scene/obj_precheck.h"
@@ -29,7 +30,8 @@ std::string readMaterialLibraries(const std::string& objPath, const std::vector<
     std::error_code ec;
     if (!fs::exists(mtl, ec)) {
       report.warnings.push_back(objPath + ":" + std::to_string(lib.line) + ": material library '" +
-                                lib.name + "' not found; its materials become grey 0.5 without emission");
+                                lib.name +
+                                "' not found; its materials become grey 0.5 without emission");
       continue;
     }
     std::string text;
@@ -45,7 +47,9 @@ std::string readMaterialLibraries(const std::string& objPath, const std::vector<
   return all;
 }
 
-Rgb toRgb(const tinyobj::real_t c[3]) { return {c[0], c[1], c[2]}; }
+Rgb toRgb(const tinyobj::real_t c[3]) {
+  return {c[0], c[1], c[2]};
+}
 
 std::vector<std::string> splitLines(const std::string& text) {
   std::vector<std::string> out;
@@ -57,7 +61,9 @@ std::vector<std::string> splitLines(const std::string& text) {
 
 }  // namespace
 
-Scene importObj(const std::string& path) { return importObjText(path, readWholeFile(path)); }
+Scene importObj(const std::string& path) {
+  return importObjText(path, readWholeFile(path));
+}
 
 Scene importObjText(const std::string& path, const std::string& text) {
   Scene scene;
@@ -100,26 +106,35 @@ Scene importObjText(const std::string& path, const std::string& text) {
         // readers ever disagree, that is still bad input, never a crash.
         const auto vi = static_cast<size_t>(mesh.indices[offset + k].vertex_index);
         if (vi >= pre.vertices.size())
-          throw InputError(path, 0, "face " + std::to_string(faceIndex + 1) + " refers to vertex " +
-                                        std::to_string(vi + 1) + " of " +
-                                        std::to_string(pre.vertices.size()));
+          throw InputError(path, 0,
+                           "face " + std::to_string(faceIndex + 1) + " refers to vertex " +
+                               std::to_string(vi + 1) + " of " +
+                               std::to_string(pre.vertices.size()));
         face.push_back(pre.vertices[vi]);
       }
       offset += count;
       ++report.facesIn;
       const FacePatches converted = faceToPatches(face, tol);
       switch (converted.outcome) {
-        case FaceOutcome::Degenerate: ++report.droppedDegenerate; continue;
-        case FaceOutcome::SplitConvex: ++report.splitNonConvex; break;
-        case FaceOutcome::Triangulated: ++report.triangulatedNonPlanar; break;
-        case FaceOutcome::Convex: break;
+        case FaceOutcome::Degenerate:
+          ++report.droppedDegenerate;
+          continue;
+        case FaceOutcome::SplitConvex:
+          ++report.splitNonConvex;
+          break;
+        case FaceOutcome::Triangulated:
+          ++report.triangulatedNonPlanar;
+          break;
+        case FaceOutcome::Convex:
+          break;
       }
       const int mid = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
       uint32_t material;
       if (mid >= 0 && static_cast<size_t>(mid) < materials.size()) {
         material = static_cast<uint32_t>(mid);
       } else {
-        if (defaultMaterial == UINT32_MAX) defaultMaterial = scene.addMaterial({"default_grey", {0.5, 0.5, 0.5}, {}});
+        if (defaultMaterial == UINT32_MAX)
+          defaultMaterial = scene.addMaterial({"default_grey", {0.5, 0.5, 0.5}, {}});
         material = defaultMaterial;
       }
       for (const ConvexPolygon& piece : converted.pieces)
@@ -127,9 +142,10 @@ Scene importObjText(const std::string& path, const std::string& text) {
     }
   }
   if (scene.patches.empty())
-    throw InputError(path, 0, report.facesIn == 0 ? "the scene has no faces"
-                                                  : "the scene has no usable face (all " +
-                                                        std::to_string(report.facesIn) + " are degenerate)");
+    throw InputError(path, 0,
+                     report.facesIn == 0 ? "the scene has no faces"
+                                         : "the scene has no usable face (all " +
+                                               std::to_string(report.facesIn) + " are degenerate)");
   return scene;
 }
 
@@ -139,9 +155,16 @@ Scene loadScene(const std::string& path) {
   if (ext == ".obj") return importObj(path);
   if (ext == ".map") return importMap(path);
   if (!ext.empty() && assimpReadsExtension(ext)) return importWithAssimp(path);
-  throw InputError(path, 0, "unsupported scene format '" + ext +
-                                "' (supported: .obj, .map, and the mesh formats Assimp reads: "
-                                ".ply, .gltf, .glb, ...)");
+  throw InputError(path, 0,
+                   "unsupported scene format '" + ext +
+                       "' (supported: .obj, .map, and the mesh formats Assimp reads: "
+                       ".ply, .gltf, .glb, ...)");
+}
+
+Scene loadScene(const std::string& path, bool contactSplit) {
+  Scene scene = loadScene(path);
+  if (contactSplit) splitPatchesAtContacts(scene);
+  return scene;
 }
 
 }  // namespace gv

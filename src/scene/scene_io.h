@@ -14,6 +14,10 @@ namespace gv {
 /// faces with fewer than 3 vertices, or a scene with no usable face.
 Scene loadScene(const std::string& path);
 
+/// loadScene, then, when `contactSplit`, splitPatchesAtContacts (scene/contact_split.h): what
+/// `radiosity` and `photons` read by default and `vis --contact-split`.
+Scene loadScene(const std::string& path, bool contactSplit);
+
 /// Reads Wavefront OBJ with its MTL libraries (looked up beside the OBJ). A missing MTL gives a
 /// warning and grey 0.5 without emission; a present but unreadable or malformed MTL is an error.
 Scene importObj(const std::string& path);

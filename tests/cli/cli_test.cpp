@@ -73,6 +73,19 @@ TEST(CliBadInput, UnknownOptionAndSubcommand) {
   EXPECT_NE(r.output.find("subcommand"), std::string::npos) << r.output;
 }
 
+TEST(Cli, VisWithContactSplitIsVerifiedOnItsPieces) {
+  // The Cornell box's blocks stand on the floor: --contact-split cuts the floor along their
+  // footprints (19 -> 31 patches); the result must still pass the independent ray check.
+  const auto dir = test::scratchDir();
+  const std::string obj = (dir / "c.obj").string(), out = (dir / "out").string();
+  ASSERT_EQ(test::runCli("gen cornell -o '" + obj + "'").exitCode, 0);
+  const auto vis = test::runCli("vis '" + obj + "' -o '" + out + "' --contact-split");
+  ASSERT_EQ(vis.exitCode, 0) << vis.output;
+  EXPECT_NE(vis.output.find("patches 31"), std::string::npos) << vis.output;
+  const auto r = test::runCli("verify '" + out + "' --rays 40000 --segments 10000");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+}
+
 }  // namespace
 }  // namespace gv
 
