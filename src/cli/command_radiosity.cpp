@@ -146,6 +146,9 @@ Action addRadiosityCommand(CLI::App& app) {
       stats["linespace"] = blockers->statsJson();
       stats["linespace"]["visibility_graph_seconds"] = visibilitySeconds;
     }
+    stats["contact_split"] = {{"enabled", !s->noContactSplit},
+                              {"patches_split", scene.report.splitAtContacts},
+                              {"pieces", scene.report.contactPieces}};
     writeJsonFile(stats, dir / "stats.json");
     if (!s->noPictures) {
       const PictureStats pictures = writeRadiosityPictures(
@@ -164,6 +167,9 @@ Action addRadiosityCommand(CLI::App& app) {
     const size_t elements = st.rounds.empty() ? 0 : st.rounds.back().elements;
     fmt::print("patches {}  links {}  elements {}  interactions {}  rays {}\n", st.patches, links,
                elements, st.interactions, st.rays);
+    if (scene.report.splitAtContacts > 0)
+      fmt::print("contact split: {} patches cut along the patches resting on them into {} pieces\n",
+                 scene.report.splitAtContacts, scene.report.contactPieces);
     fmt::print("{} rounds, {:.2f} s, {}; wrote {}\n", st.rounds.size(), st.seconds,
                st.converged ? "converged" : "NOT converged (raise --max-refinements)",
                dir.string());

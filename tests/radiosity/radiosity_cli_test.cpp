@@ -83,6 +83,10 @@ TEST(RadiosityCliTest, PatchesAreCutAlongContactsAndTheCoveredPartIsBlack) {
   const auto [whole, wholeB] = run("whole", "--no-contact-split");
   ASSERT_EQ(whole.patches.size(), 8u);
   const auto [cut, cutB] = run("cut", "");
+  std::ifstream statsFile(dir / "cut" / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(statsFile);
+  EXPECT_EQ(stats["contact_split"]["patches_split"], 1);
+  EXPECT_EQ(stats["contact_split"]["pieces"], 5);
   // The floor becomes four pieces around the footprint and the one under it: 12 patches.
   ASSERT_EQ(cut.patches.size(), 12u);
   double floorPower = 0, floorArea = 0;
