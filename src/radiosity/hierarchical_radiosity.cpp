@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
-#include <unordered_map>
 #include <utility>
 
 #include "radiosity/polygon_sampling.h"
@@ -369,13 +368,14 @@ class Solver {
       contribution.assign(list.size() * k, 0.0);
       deviation.assign(k, 0.0);
       for (size_t j = 0; j < list.size(); ++j) {
-        const Link& l = links_[list[j]];
+        Link& l = links_[list[j]];
         const bool atA = l.a == e;
         const uint32_t other = atA ? l.b : l.a;
         const double weight =
             maxChannel(reflectance_[el.patch] * radiosity_[other]) * l.visibility / be;
         const double* offMean = childDeviations(l, e);
-        for (uint32_t c = 0; c < k; ++c) deviation[c] += contribution[j * k + c] = weight * offMean[c];
+        for (uint32_t c = 0; c < k; ++c)
+          deviation[c] += contribution[j * k + c] = weight * offMean[c];
       }
       for (uint32_t pass = 0; pass <= k; ++pass) {
         uint32_t worst = 0;
@@ -415,23 +415,23 @@ class Solver {
   }
 
   /// Per child c of `e` (an end of `l`, with children): the link's mean form factor into e minus
-  /// the point form factor at c's centroid. Geometry only, so computed once per (e, other end)
-  /// and kept: the consistency passes revisit the same links every pass and every round.
-  const double* childDeviations(const Link& l, uint32_t e) {
+  /// the point form factor at c's centroid. Geometry only, so computed once per link end and
+  /// kept (Link::deviationsAtA/B): the consistency passes revisit the same links every pass and
+  /// every round.
+  const double* childDeviations(Link& l, uint32_t e) {
     const bool atA = l.a == e;
-    const uint32_t other = atA ? l.b : l.a;
-    const uint64_t key = (static_cast<uint64_t>(e) << 32) | other;
-    const auto [it, added] = deviationAt_.try_emplace(key, deviationPool_.size());
-    if (added) {
+    uint32_t& at = atA ? l.deviationsAtA : l.deviationsAtB;
+    if (at == UINT32_MAX) {
+      at = static_cast<uint32_t>(deviationPool_.size());
+      const uint32_t other = atA ? l.b : l.a;
       const Element& el = tree_[e];
-      const double mean =
-          atA ? l.unoccludedAB : l.unoccludedAB * tree_[l.a].area / tree_[l.b].area;
+      const double mean = atA ? l.unoccludedAB : l.unoccludedAB * tree_[l.a].area / tree_[l.b].area;
       for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c)
         deviationPool_.push_back(mean - pointFormFactorToFront(tree_[c].polygon.centroid(),
                                                                el.polygon.plane,
                                                                tree_[other].polygon, tol_));
     }
-    return deviationPool_.data() + it->second;
+    return deviationPool_.data() + at;
   }
 
   /// Drops the taps of links that refinement replaced (they are only appended).
@@ -555,9 +555,7 @@ class Solver {
   ElementTree tree_;
   std::vector<Link> links_;
   std::vector<Tap> taps_;                    ///< of the Partial links (Link::tapBegin)
-  /// childDeviations' cache: (element << 32 | other end) -> offset of its values in the pool.
-  std::unordered_map<uint64_t, size_t> deviationAt_;
-  std::vector<double> deviationPool_;
+  std::vector<double> deviationPool_;        ///< childDeviations' values (Link::deviationsAtA/B)
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
   std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)

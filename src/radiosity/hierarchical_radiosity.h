@@ -34,6 +34,9 @@ struct Link {
   /// Partial links: the solver's taps (the oracle's clear samples mapped to the elements they
   /// end on) are tapBegin .. tapBegin + tapCount - 1 of its tap store; 0 taps: gather the means.
   uint32_t tapBegin = 0, tapCount = 0;
+  /// The solver's cache of the per-child form-factor deviations at each end (receiver
+  /// consistency); UINT32_MAX until first needed.
+  uint32_t deviationsAtA = UINT32_MAX, deviationsAtB = UINT32_MAX;
 };
 
 /// Solver parameters. Defaults aim at converged answers (per-patch errors well below 1 %) on
