@@ -9,11 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "util/progress_bar.h"
-#include "util/timing.h"
 #include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
 #include "scene/input_error.h"
+#include "util/progress_bar.h"
 #include "util/timing.h"
 
 namespace gv::cli {
@@ -32,7 +31,8 @@ Action addPvsCommand(CLI::App& app) {
   cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
   cmd->add_option("-o,--output", s->output, "PVS text file to write")->required();
   cmd->add_flag("--serial", s->serial, "One thread (the output is the same either way)");
-  cmd->add_flag("-q,--quiet", s->quiet, "No progress bar on stderr (there is none unless it is a terminal)");
+  cmd->add_flag("-q,--quiet", s->quiet,
+                "No progress bar on stderr (there is none unless it is a terminal)");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   cmd->add_flag("--no-lp", s->noLp,
                 "Decide by separating-plane clipping only (faster, looser; still conservative)");
@@ -70,28 +70,32 @@ Action addPvsCommand(CLI::App& app) {
 
     const StabbingStats& st = pvs.stabbing;
     if (s->json) {
-      const nlohmann::json j = {
-          {"portals_file", s->input},
-          {"output", s->output},
-          {"prt_version", prt.version},
-          {"leafs", pvs.leafCount},
-          {"clusters", pvs.clusterCount},
-          {"portals", pvs.portalCount},
-          {"mean_leafs_visible", pvs.meanLeafsVisible},
-          {"mean_clusters_might_see", pvs.meanClustersMightSee},
-          {"sequences_searched", pvs.sequencesSearched},
-          {"stabbing_tests", st.tests},
-          {"blocked_by_clipping", st.blockedByClipping},
-          {"blocked_by_lp", st.blockedByLp},
-          {"stabbed", st.stabbed},
-          {"unresolved", st.unresolved},
-          {"lp_numerical_failures", st.lpNumericalFailures},
-          {"degenerate_portals", st.degeneratePortals},
-          {"one_sided_pairs_dropped", pvs.oneSidedPairsDropped},
-          {"self_portals_skipped", prt.selfPortalsSkipped},
-          {"seconds", elapsed()},
-          {"flood_seconds", pvs.floodSeconds},
-          {"search_seconds", pvs.searchSeconds}};
+      const nlohmann::json j = {{"portals_file", s->input},
+                                {"output", s->output},
+                                {"prt_version", prt.version},
+                                {"leafs", pvs.leafCount},
+                                {"clusters", pvs.clusterCount},
+                                {"portals", pvs.portalCount},
+                                {"mean_leafs_visible", pvs.meanLeafsVisible},
+                                {"mean_clusters_might_see", pvs.meanClustersMightSee},
+                                {"sequences_searched", pvs.sequencesSearched},
+                                {"stabbing_tests", st.tests},
+                                {"blocked_by_clipping", st.blockedByClipping},
+                                {"blocked_by_lp", st.blockedByLp},
+                                {"stabbed", st.stabbed},
+                                {"unresolved", st.unresolved},
+                                {"lp_numerical_failures", st.lpNumericalFailures},
+                                {"degenerate_portals", st.degeneratePortals},
+                                {"lp_solves", st.lpSolves},
+                                {"lp_shortcuts", st.lpShortcuts},
+                                {"lp_deferred", st.lpDeferred},
+                                {"deferred_blocked", st.deferredBlocked},
+                                {"simplex_fallbacks", st.simplexFallbacks},
+                                {"one_sided_pairs_dropped", pvs.oneSidedPairsDropped},
+                                {"self_portals_skipped", prt.selfPortalsSkipped},
+                                {"seconds", elapsed()},
+                                {"flood_seconds", pvs.floodSeconds},
+                                {"search_seconds", pvs.searchSeconds}};
       fmt::print("{}\n", j.dump(2));
       return 0;
     }

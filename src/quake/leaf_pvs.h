@@ -13,14 +13,22 @@
 
 namespace gv {
 
+/// Edge clearance a leaf-PVS sightline needs (StabbingOptions::blockedBelow), in units of the
+/// scene's diagonal for a line crossing the first portal at unit speed along its normal: lines
+/// only touching portal edges (the corner sightlines of axis-aligned BSP grids) are not kept.
+/// A thousand times below the 1e-6 diagonal that the ray-sampling tests keep from every edge.
+/// E1M1: 165.4 -> 163.3 mean leafs visible, no ray-proven pair lost.
+inline constexpr double kPvsEdgeClearance = 1e-9;
+
 /// The stabber's defaults without the witness-line search: the PVS needs only "blocked or not",
 /// and witness lines (a third of the search time on E1M1) never change what is pruned. With the
 /// LP deferred for cells already visible (`deferLp`: the same cells reached, a quarter fewer LP
-/// solves on E1M1).
+/// solves on E1M1), and open portals (kPvsEdgeClearance).
 inline StabbingOptions pvsStabbingOptions() {
   StabbingOptions o;
   o.seekWitness = false;
   o.deferLp = true;
+  o.blockedBelow = kPvsEdgeClearance;
   return o;
 }
 

@@ -440,7 +440,7 @@ std::optional<StabbingResult> PortalSequenceStabber::tryLpWithoutSolve(size_t in
     const LpVector saved = level.optimum;
     const bool savedOptimal = level.optimal;
     lowerLazily(level, first);
-    if (level.optimum[kT] >= -kStabbingLpMargin * sizeOf(level.optimum))
+    if (level.optimum[kT] >= options_.blockedBelow * sizeOf(level.optimum))
       return StabbingResult::Unresolved;
     level.optimum = saved;
     level.optimal = savedOptimal;
@@ -455,7 +455,7 @@ std::optional<StabbingResult> PortalSequenceStabber::tryLpWithoutSolve(size_t in
       if (from->empty()) continue;
       LpVector x;
       if (!linePoint(centroidOf(*from), target, level.constraintEnd, x)) continue;
-      if (x[kT] >= -kStabbingLpMargin * sizeOf(x)) {
+      if (x[kT] >= options_.blockedBelow * sizeOf(x)) {
         level.optimum = x;
         level.optimal = false;
         ++stats_.lpShortcuts;
@@ -492,7 +492,7 @@ StabbingResult PortalSequenceStabber::solveLp(size_t index) {
     level.basis = simplex.basis;
     level.optimum = simplex.x;
     level.optimal = true;
-    return simplex.certifiedUpperBound < -kStabbingLpMargin * sizeOf(simplex.x)
+    return simplex.certifiedUpperBound < options_.blockedBelow * sizeOf(simplex.x)
                ? StabbingResult::Blocked
                : StabbingResult::Unresolved;
   }
@@ -510,7 +510,7 @@ StabbingResult PortalSequenceStabber::solveLp(size_t index) {
     return StabbingResult::Unresolved;
   }
   level.optimum = *x;
-  if ((*x)[kT] < -kStabbingLpMargin * sizeOf(*x)) return StabbingResult::Blocked;
+  if ((*x)[kT] < options_.blockedBelow * sizeOf(*x)) return StabbingResult::Blocked;
   return StabbingResult::Unresolved;
 }
 

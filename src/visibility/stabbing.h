@@ -74,6 +74,13 @@ struct StabbingOptions {
   /// that need no answer for the level itself (the leaf PVS, when its cell is already visible).
   /// Ignored when seekWitness is set.
   bool deferLp = false;
+  /// The LP answers Blocked when even the best line's worst edge clearance t* (the LP's objective,
+  /// in scene-scaled units) is below this times the size of its coordinates. The default, a small
+  /// negative margin, never drops a line that touches the portals' edges (closed portals, the
+  /// conservative reading for rounding). A small positive value reads the portals as open: lines
+  /// that only graze an edge (clearance below it, a measure-tiny set no ray sampling proves)
+  /// are not sightlines. The clipping is unaffected (it keeps touching lines either way).
+  double blockedBelow = -kStabbingLpMargin;
 };
 
 /// An incremental stabbing-line test for a growing sequence of convex portals.
