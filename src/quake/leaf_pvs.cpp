@@ -282,6 +282,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   for (size_t t = 0; t < threads; ++t) searchers.emplace_back(inputs, cells, options.stabbing);
   std::atomic<size_t> next{0}, finished{0};
   std::atomic<bool> stop{false};
+  size_t reported = 0;  // the last count given to options.progress (from the calling thread)
   std::unique_ptr<std::atomic<bool>[]> done(new std::atomic<bool>[np]);
   for (size_t k = 0; k < np; ++k) done[k].store(false, std::memory_order_relaxed);
   // One worker: searches ranks in increasing order until none is left. Every rank below the one
@@ -307,7 +308,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       portalVis[pi] = s.visible;
       done[k].store(true, std::memory_order_release);
       const size_t n = finished.fetch_add(1, std::memory_order_relaxed) + 1;
-      if (callingThread && options.progress) options.progress(n, np);
+      if (callingThread && options.progress) options.progress(reported = n, np);
     }
   };
   if (threads == 1) {
@@ -333,7 +334,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
     }
     helpers.wait();
   }
-  if (options.progress) options.progress(np, np);
+  if (options.progress && reported < np) options.progress(np, np);
   for (const Searcher& s : searchers) {
     result.stabbing += s.stabber.stats();
     result.sequencesSearched += s.sequences;
