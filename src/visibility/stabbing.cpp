@@ -207,7 +207,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   level.clipped.assign(portal.begin(), portal.end());
   level.lpValid = options_.useLinearProgram;
   level.separators.clear();
-  level.separatorsKnown = false;
+  level.separatorCursor = SeparatorCursor{};
   level.lpPending = level.blocked = false;
   level.witness.reset();
   level.basis = SimplexBasis{};
@@ -263,13 +263,16 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
     if (!level.clipped.empty() && depth_ >= 2) {
-      if (!prev.separatorsKnown) {
-        findSeparatingPlanes(prev.source, prev.clipped, prev.separators);
-        prev.separatorsKnown = true;
-      }
-      for (const ClipPlane& plane : prev.separators) {
+      // Found lazily, an edge at a time, and kept for the siblings: a portal clipped away by
+      // the first few planes needs no more of them.
+      for (size_t k = 0; !level.clipped.empty();) {
+        if (k == prev.separators.size()) {
+          if (prev.separatorCursor.done()) break;
+          appendNextSeparators(prev.source, prev.clipped, prev.separatorCursor, prev.separators);
+          continue;
+        }
+        const ClipPlane& plane = prev.separators[k++];
         clipInPlace(level.clipped, plane.unitNormal, plane.offset, tol_.length(), dist_, scratch_);
-        if (level.clipped.empty()) break;
       }
     }
     if (level.clipped.empty()) {

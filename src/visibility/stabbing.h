@@ -14,6 +14,7 @@
 #include "visibility/dual_simplex.h"
 #include "visibility/linear_program.h"
 #include "visibility/portal_clipping.h"
+#include "visibility/separator_search.h"
 #include "visibility/witness_line.h"
 
 namespace gv {
@@ -151,7 +152,7 @@ class PortalSequenceStabber {
     SimplexBasis basis;  // the last LP basis on this path: a warm start for deeper levels
     // Separating planes of (source, clipped): they clip every portal pushed after this level.
     std::vector<ClipPlane> separators;
-    bool separatorsKnown = false;
+    SeparatorCursor separatorCursor;  // how far `separators` has been found (lazily)
     bool lpPending = false;  // the LP solve was deferred (deferLp)
     bool blocked = false;    // the deferred solve proved the sequence blocked
   };
