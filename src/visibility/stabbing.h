@@ -153,8 +153,8 @@ class PortalSequenceStabber {
     // Separating planes of (source, clipped): they clip every portal pushed after this level.
     std::vector<ClipPlane> separators;
     SeparatorCursor separatorCursor;  // how far `separators` has been found (lazily)
-    bool lpPending = false;  // the LP solve was deferred (deferLp)
-    bool blocked = false;    // the deferred solve proved the sequence blocked
+    bool lpPending = false;           // the LP solve was deferred (deferLp)
+    bool blocked = false;             // the deferred solve proved the sequence blocked
   };
 
   std::optional<StabbingResult> tryLpWithoutSolve(size_t index);
