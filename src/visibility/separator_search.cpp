@@ -12,6 +12,9 @@ namespace {
 
 // A vertex whose sine of angle to the edge's line (squared) is below this is taken as on it.
 constexpr double kAxisVertex = 1e-20;
+// A point whose sine of angle to a candidate plane (squared) exceeds this is clearly on its side
+// (far beyond rounding): the candidate is decided without the exact test.
+constexpr double kClearSide = 1e-12;
 
 // i + 1 modulo n, without an integer division (n >= 1, i < n).
 inline size_t nextIndex(size_t i, size_t n) {
@@ -149,8 +152,18 @@ void appendSeparatorsOfEdge(std::span<const Vec3> edges, size_t i, std::span<con
     if (dot(nHi, w) < 0 && offAxis(w, n)) hi = k, nHi = n;
   }
   if (lo == nv) return;
-  acceptIfSeparator(edges, i, verts, lo, keepVertsSide, !keepVertsSide, out);
-  if (hi != lo) acceptIfSeparator(edges, i, verts, hi, keepVertsSide, !keepVertsSide, out);
+  // `verts` is on the negative side of lo's plane and the positive side of hi's: a separator has
+  // the edge polygon on the other side, so a candidate whose next vertex of that polygon is
+  // clearly on the same side is skipped without the exact test (skipping can only lose a plane).
+  const Vec3 next = edges[nextIndex(nextIndex(i, ne), ne)] - a;
+  const double nextLength2 = lengthSquared(next);
+  auto clearly = [&](const Vec3& normal, double side) {
+    const double s = side * dot(normal, next);
+    return s > 0 && s * s > kClearSide * lengthSquared(normal) * nextLength2;
+  };
+  if (!clearly(nLo, -1)) acceptIfSeparator(edges, i, verts, lo, keepVertsSide, !keepVertsSide, out);
+  if (hi != lo && !clearly(nHi, 1))
+    acceptIfSeparator(edges, i, verts, hi, keepVertsSide, !keepVertsSide, out);
 }
 
 }  // namespace
