@@ -263,7 +263,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   //    (`vis`'s order), each using the finished results of the searches ranked kResultLag or more
   //    before it (SearchInputs). Threads take the next rank from a shared counter and wait (rarely:
   //    only when one search outlasts kResultLag of the others) until the results it may use are
-  //    done; no barrier, so no thread idles at the end of a wave.
+  //    done; no barrier between groups of searches, so threads idle only for such waits.
   const auto t1 = Clock::now();
   const size_t np = g.portals.size();
   std::vector<int> order(np);

@@ -34,10 +34,11 @@ inline StabbingOptions pvsStabbingOptions() {
 
 struct LeafPvsOptions {
   StabbingOptions stabbing = pvsStabbingOptions();
-  /// Run source clusters in parallel (oneTBB); the result is identical to the serial run.
+  /// Run the searches on the threads of the current oneTBB arena; the result is identical to the
+  /// serial run (and to a run on any number of threads).
   bool parallel = true;
-  /// Called between waves of the search with (directed portals searched, total), from the
-  /// calling thread.
+  /// Called after each search the calling thread finishes, with (directed portals searched,
+  /// total), strictly increasing, from the calling thread; it may throw to stop the searches.
   std::function<void(size_t, size_t)> progress;
 };
 
@@ -64,12 +65,14 @@ struct LeafPvsResult {
 };
 
 /// Computes the PVS. Clusters (PRT2) or leafs (PRT1) are the convex cells; a cell sees itself and
-/// every cell reached by a portal sequence that admits a stabbing line. Method:
+/// every cell reached by a portal sequence that admits a stabbing line (through open portals with
+/// the default options: see kPvsEdgeClearance). Method:
 ///  1. might-see flood per directed portal (cheap plane tests, `vis -fast`-like);
 ///  2. from each directed portal, depth-first search over the portal sequences it starts, pruned
 ///     when the stabbing test proves a sequence blocked, when the entered cell is already on the
 ///     path (a line meets a convex cell once), or when nothing the sequence might still reach is
-///     unseen (might-see sets narrowed by the results of portals searched in earlier waves),
+///     unseen (might-see sets narrowed by the results of the portals searched at least 16 places
+///     earlier in increasing might-see order: the same for any number of threads),
 ///     or when the entered cell cannot see the path back (sightlines are symmetric: the reverse
 ///     portal's might-see set misses a cell of the path, or every might-see set of the entered
 ///     cell's portals misses the source);

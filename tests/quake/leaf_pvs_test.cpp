@@ -4,11 +4,13 @@
 #include "quake/leaf_pvs.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 
 #include "geometry/tolerance.h"
 #include "visibility/portal_clipping.h"
@@ -242,6 +244,44 @@ TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnes
   const LeafPvsResult w = computeLeafPvs(prt, withWitness);
   EXPECT_GT(w.stabbing.stabbed, 0u);
   EXPECT_EQ(w.visibleLeafs, pvs.visibleLeafs);
+}
+
+std::vector<size_t> members(const CellSet& set) {
+  std::vector<size_t> m;
+  set.forEach([&](size_t i) { m.push_back(i); });
+  return m;
+}
+
+TEST(LeafPvsRealMap, LightGeneralSameOutputOnAnyNumberOfThreadsAndProgressMayStopIt) {
+  const PrtFile prt = sharedMap("light_general");
+  if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
+  LeafPvsOptions serial;
+  serial.parallel = false;
+  const LeafPvsResult one = computeLeafPvs(prt, serial);
+  for (int threads : {2, 3, 5}) {
+    tbb::task_arena arena(threads);
+    LeafPvsResult r;
+    size_t last = 0, total = 0;
+    LeafPvsOptions options;
+    options.progress = [&](size_t done, size_t n) {
+      EXPECT_GT(done, last);
+      last = done, total = n;
+    };
+    arena.execute([&] { r = computeLeafPvs(prt, options); });
+    EXPECT_EQ(r.visibleLeafs, one.visibleLeafs) << threads;
+    ASSERT_EQ(r.portalFlow.size(), one.portalFlow.size());
+    for (size_t i = 0; i < r.portalFlow.size(); ++i)
+      EXPECT_EQ(members(r.portalFlow[i]), members(one.portalFlow[i])) << threads << " " << i;
+    EXPECT_EQ(r.sequencesSearched, one.sequencesSearched) << threads;
+    EXPECT_EQ(r.stabbing.lpSolves, one.stabbing.lpSolves) << threads;
+    EXPECT_EQ(last, 2 * prt.portals.size());
+    EXPECT_EQ(total, 2 * prt.portals.size());
+    // A callback that throws stops every thread's searches; the exception reaches the caller.
+    options.progress = [](size_t done, size_t) {
+      if (done >= 20) throw std::runtime_error("stop");
+    };
+    arena.execute([&] { EXPECT_THROW(computeLeafPvs(prt, options), std::runtime_error); });
+  }
 }
 
 // E1M1 (1167 clusters) takes ~20 CPU seconds: disabled by default, run with
