@@ -298,9 +298,10 @@ TEST(LeafPvsRealMap, DISABLED_E1M1ContainsEveryRayPair) {
 // Open portals (kPvsEdgeClearance) drop only pairs no ray reaches: for every cluster pair the
 // closed-portal PVS has and the default one lacks, rays from random points of the first cluster's
 // portals aimed at random points of the second's (every sightline between them is such a ray)
-// never get there. Two E1M1 runs, ~20 CPU seconds: run by hand like the test above.
-TEST(LeafPvsRealMap, DISABLED_E1M1OpenPortalsDropNoRayVisiblePair) {
-  const PrtFile prt = sharedMap("E1M1-edited-ents");
+// never get there. Two PVS runs of a real map (E1M1 ~20 CPU seconds): run by hand like the test
+// above.
+void expectDroppedPairsUnreached(const std::string& name) {
+  const PrtFile prt = sharedMap(name);
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   const LeafPvsResult open = computeLeafPvs(prt);
   LeafPvsOptions closedOptions;
@@ -338,8 +339,25 @@ TEST(LeafPvsRealMap, DISABLED_E1M1OpenPortalsDropNoRayVisiblePair) {
   }
   EXPECT_EQ(reached, 0u);
   EXPECT_GT(dropped, 0u);
-  RecordProperty("dropped_cluster_pairs", std::to_string(dropped));
-  RecordProperty("rays", std::to_string(rays));
+  ::testing::Test::RecordProperty("dropped_cluster_pairs", std::to_string(dropped));
+  ::testing::Test::RecordProperty("rays", std::to_string(rays));
+}
+
+TEST(LeafPvsRealMap, DISABLED_E1M1OpenPortalsDropNoRayVisiblePair) {
+  expectDroppedPairsUnreached("E1M1-edited-ents");
+}
+
+TEST(LeafPvsRealMap, DISABLED_E3m4OpenPortalsDropNoRayVisiblePair) {
+  expectDroppedPairsUnreached("e3m4");
+}
+
+TEST(LeafPvsRealMap, DISABLED_E3m4ContainsEveryRayPair) {
+  const PrtFile prt = sharedMap("e3m4");
+  if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
+  const LeafPvsResult pvs = computeLeafPvs(prt);
+  expectSymmetricWithSelf(pvs);
+  EXPECT_GT(checkAgainstRays(prt, pvs, 300000, 5), 20000u);
+  RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
 }
 
 }  // namespace
