@@ -203,7 +203,6 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   // once the search has been this deep.
   if (levels_.size() <= depth_) levels_.resize(depth_ + 1);
   Level& level = levels_[depth_];
-  level.original.assign(portal.begin(), portal.end());
   level.clipped.assign(portal.begin(), portal.end());
   level.lpValid = options_.useLinearProgram;
   level.separators.clear();
@@ -213,11 +212,18 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   level.basis = SimplexBasis{};
   level.optimal = false;
   level.optimum = LpVector{};
-  const Vec3 newell = newellNormal(portal);
-  const bool degenerate = isDegenerate(portal, newell, tol_);
-  if (degenerate) ++stats_.degeneratePortals;
+  // The portal's own data, needed once it is past the clipping (which half the pushes are not).
+  Vec3 newell;
+  bool degenerate = false;
+  auto describe = [&] {
+    level.original.assign(portal.begin(), portal.end());
+    newell = newellNormal(portal);
+    degenerate = isDegenerate(portal, newell, tol_);
+    if (degenerate) ++stats_.degeneratePortals;
+  };
 
   if (depth_ == 0) {
+    describe();
     // The first portal fixes the LP frame.
     origin_ = portal.empty() ? Vec3{} : centroidOf(portal);
     scale_ = tol_.scale;
@@ -255,7 +261,6 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
 
   Level& prev = levels_[depth_ - 1];
   level.lpValid = level.lpValid && prev.lpValid;
-  level.source.assign(prev.source.begin(), prev.source.end());
   if (options_.clipBySeparatingPlanes) {
     // The line crosses the first portal's plane once, forward: everything later is in front.
     if (!firstDegenerate_) {
@@ -279,6 +284,10 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
       ++stats_.blockedByClipping;
       return StabbingResult::Blocked;
     }
+  }
+  describe();
+  level.source.assign(prev.source.begin(), prev.source.end());
+  if (options_.clipBySeparatingPlanes) {
     // Symmetrically, the line crosses the new portal's plane forward after crossing the first
     // portal: the first portal's useful part is behind that plane.
     if (!degenerate) {
