@@ -419,7 +419,8 @@ void PortalSequenceStabber::lowerLazily(Level& level, size_t firstRow) const {
 
 // The LP point of the line from a to b (world points): its direction scaled to d·normal_ = 1
 // (false unless the line crosses the first portal's plane forward and lies in the box), t the
-// least value of rows [0, rowEnd).
+// least value of rows [0, rowEnd); false as soon as a row puts t below the "not blocked"
+// threshold (rows from the newest: the new portal's are the likeliest to).
 bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEnd,
                                       LpVector& x) const {
   const Vec3 p = toLocal(a);
@@ -432,11 +433,13 @@ bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEn
   x[0] = d[j0], x[1] = d[j1], x[2] = m.x, x[3] = m.y, x[4] = m.z;
   for (int j = 0; j < kT; ++j)
     if (!(std::abs(x[j]) <= kStabbingMaxGrazingSlope)) return false;
+  const double threshold = options_.blockedBelow * sizeOf(x);
   double t = kStabbingMaxGrazingSlope;
-  for (size_t i = 0; i < rowEnd; ++i) {
+  for (size_t i = rowEnd; i-- > 0;) {
     double rest = rows_[i].b;
     for (int j = 0; j < kT; ++j) rest -= rows_[i].a[j] * x[j];
     t = std::min(t, rest / rows_[i].a[kT]);
+    if (t < threshold) return false;
   }
   x[kT] = std::max(t, lpBoxLo()[kT]);
   return true;
