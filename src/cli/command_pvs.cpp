@@ -25,7 +25,7 @@ Action addPvsCommand(CLI::App& app) {
   struct State {
     std::string input, output;
     bool serial = false, quiet = false, noLp = false, backClip = false, json = false,
-         witness = false;
+         witness = false, closed = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
@@ -39,6 +39,9 @@ Action addPvsCommand(CLI::App& app) {
   cmd->add_flag("--back-clip", s->backClip,
                 "Also clip the first portal by the separating planes of the last two (vis's back "
                 "clip): prunes more sequences, costs more per sequence");
+  cmd->add_flag("--closed-portals", s->closed,
+                "Keep sightlines that only touch portal edges (the default drops lines clearing "
+                "no edge by 1e-9 of the map's size: more leafs visible, slower)");
   cmd->add_flag("--witness", s->witness,
                 "Also look for exact witness lines (counts 'stabbed' sequences; same PVS, slower)");
   return [s] {
@@ -50,6 +53,7 @@ Action addPvsCommand(CLI::App& app) {
     options.stabbing.useLinearProgram = !s->noLp;
     options.stabbing.backClip = s->backClip;
     options.stabbing.seekWitness = s->witness;
+    if (s->closed) options.stabbing.blockedBelow = -kStabbingLpMargin;
     ProgressBar bar("pvs (directed portals)", !s->quiet && stderrIsTerminal());
     options.progress = bar.callback();
     const LeafPvsResult pvs = computeLeafPvs(prt, options);
@@ -86,6 +90,11 @@ Action addPvsCommand(CLI::App& app) {
                                 {"unresolved", st.unresolved},
                                 {"lp_numerical_failures", st.lpNumericalFailures},
                                 {"degenerate_portals", st.degeneratePortals},
+                                {"lp_solves", st.lpSolves},
+                                {"lp_shortcuts", st.lpShortcuts},
+                                {"lp_deferred", st.lpDeferred},
+                                {"deferred_blocked", st.deferredBlocked},
+                                {"simplex_fallbacks", st.simplexFallbacks},
                                 {"one_sided_pairs_dropped", pvs.oneSidedPairsDropped},
                                 {"self_portals_skipped", prt.selfPortalsSkipped},
                                 {"seconds", elapsed()},

@@ -3,13 +3,16 @@
 #include "quake/leaf_pvs.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
-#include <mutex>
+#include <memory>
+#include <thread>
 
 #include "geometry/tolerance.h"
 #include "util/timing.h"
@@ -18,6 +21,11 @@
 
 namespace gv {
 namespace {
+
+// A search uses the results of the searches ranked this many places or more before it (and the
+// flood sets otherwise). Fixed, so the output does not depend on the number of threads; large
+// enough that a thread seldom waits for a long search of another.
+constexpr size_t kResultLag = 16;
 
 // A portal crossed in one direction: 2i is portal i from clusterA to clusterB (file winding), 2i+1
 // the way back (reversed winding), so that the winding is always counter-clockwise seen from the
@@ -98,24 +106,26 @@ void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
   }
 }
 
+// The inputs every search reads: the flood, and the finished searches' results. A search of
+// rank k (its place in the search order) reads the result of a directed portal of rank below
+// k - kResultLag, and the flood of any other: which results it may use depends only on k, never on
+// thread timing, so the output is the same for any number of threads.
+struct SearchInputs {
+  const Graph& g;
+  const std::vector<CellSet>& flood;
+  const std::vector<CellSet>& portalVis;  // per directed portal, its search's result once done
+  const std::vector<size_t>& rank;        // per directed portal, its place in the search order
+};
+
 // One thread's search state.
 struct Searcher {
-  Searcher(const Graph& graph, const std::vector<const CellSet*>& mightSee,
-           const std::vector<CellSet>& reachOf, size_t cells, const StabbingOptions& options)
-      : g(graph),
-        might(mightSee),
-        reach(reachOf),
-        stabber(graph.tol, options),
-        visible(cells),
-        onPath(cells, 0) {}
+  Searcher(const SearchInputs& in, size_t cells, const StabbingOptions& options)
+      : g(in.g), inputs(in), stabber(in.g.tol, options), visible(cells), onPath(cells, 0) {}
 
   const Graph& g;
-  // Per directed portal, the cells a line through it may reach: the flood, or (once that portal's
-  // own search is finished) its search result, which is smaller and still conservative (the rest
-  // of any sequence through it is a sequence starting with it).
-  const std::vector<const CellSet*>& might;
-  // Per cell, the cells a line leaving it may reach: the union of its portals' `might` sets.
-  const std::vector<CellSet>& reach;
+  const SearchInputs& inputs;
+  // Results of directed portals ranked below this are used (see SearchInputs).
+  size_t usableRanks = 0;
   PortalSequenceStabber stabber;
   CellSet visible;
   std::vector<char> onPath;
@@ -123,6 +133,13 @@ struct Searcher {
   std::vector<int> path;        // the cells before the current one, source first
   uint64_t sequences = 0;
   std::vector<uint64_t> successes, failures;  // stabbing tests by sequence length (Fig. 13)
+
+  // The cells a line through directed portal `pi` may reach: the flood, or (once that portal's
+  // own search is finished and usable) its search result, which is smaller and still conservative
+  // (the rest of any sequence through it is a sequence starting with it).
+  const CellSet& might(int pi) const {
+    return inputs.rank[pi] < usableRanks ? inputs.portalVis[pi] : inputs.flood[pi];
+  }
 
   void count(size_t length, bool success) {
     std::vector<uint64_t>& v = success ? successes : failures;
@@ -135,8 +152,10 @@ struct Searcher {
     return frames[depth];
   }
 
-  // The cells reached by stabbable portal sequences starting with directed portal `pi`.
-  void searchFrom(int pi) {
+  // The cells reached by stabbable portal sequences starting with directed portal `pi`, using
+  // the results of the searches ranked below `usable`.
+  void searchFrom(int pi, size_t usable) {
+    usableRanks = usable;
     const DirectedPortal& p = g.portals[pi];
     visible.clear();
     visible.insert(p.to);
@@ -145,12 +164,17 @@ struct Searcher {
     ++sequences;
     count(1, true);
     onPath[p.from] = onPath[p.to] = 1;
-    // Sightlines are symmetric: a line from cell A = p.from into a cell Y, reversed, leaves Y and
-    // reaches A. So a cell whose `reach` excludes A is not entered (nor anything behind it).
+    // Sightlines are symmetric: a line from cell A = p.from into a cell Y, reversed, leaves Y
+    // through one of Y's portals and reaches A. So a cell none of whose portals' might-see sets
+    // holds A is not entered (nor anything behind it).
     CellSet& start = frame(1);
-    start = *might[pi];
-    for (size_t y = 0; y < reach.size(); ++y)
-      if (start.contains(y) && !reach[y].contains(static_cast<size_t>(p.from))) start.erase(y);
+    start = might(pi);
+    const size_t from = static_cast<size_t>(p.from);
+    start.forEach([&](size_t y) {
+      for (int qi : g.outgoing[y])
+        if (might(qi).contains(from)) return;
+      start.erase(y);
+    });
     path.assign(1, p.from);
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
@@ -170,9 +194,9 @@ struct Searcher {
       if (!frames[depth].contains(r.to)) continue;
       // The reversed line leaves r.to through r's reverse portal (index ri ^ 1) and passes
       // through every earlier cell of the path.
-      if (!reachesAll(*might[ri ^ 1])) continue;
+      if (!reachesAll(might(ri ^ 1))) continue;
       // Nothing this branch might reach is unseen: it cannot change the answer.
-      if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], *might[ri], visible)) continue;
+      if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], might(ri), visible)) continue;
       ++sequences;
       // Entering a cell already seen, the push matters only for what lies behind it: its LP may
       // wait until a deeper portal needs it.
@@ -235,51 +259,82 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   }
   result.floodSeconds = secondsSince(t0);
 
-  // 2. Depth-first search from every directed portal, in waves of increasing might-see size
-  //    (`vis`'s order): a search uses the finished results of earlier waves as its might-see
-  //    sets. Which results a search may use depends only on the wave, never on thread timing,
-  //    so the output is the same for any number of threads.
+  // 2. Depth-first search from every directed portal in increasing order of might-see size
+  //    (`vis`'s order), each using the finished results of the searches ranked kResultLag or more
+  //    before it (SearchInputs). Threads take the next rank from a shared counter and wait (rarely:
+  //    only when one search outlasts kResultLag of the others) until the results it may use are
+  //    done; no barrier between groups of searches, so threads idle only for such waits.
   const auto t1 = Clock::now();
   const size_t np = g.portals.size();
   std::vector<int> order(np);
-  std::vector<size_t> floodSize(np);
+  std::vector<size_t> floodSize(np), rank(np);
   for (size_t i = 0; i < np; ++i) order[i] = static_cast<int>(i), floodSize[i] = flood[i].count();
   std::stable_sort(order.begin(), order.end(),
                    [&](int a, int b) { return floodSize[a] < floodSize[b]; });
+  for (size_t k = 0; k < np; ++k) rank[order[k]] = k;
   std::vector<CellSet> portalVis(np, CellSet(cells));
-  std::vector<const CellSet*> might(np);
-  for (size_t i = 0; i < np; ++i) might[i] = &flood[i];
-  std::vector<CellSet> reach(cells, CellSet(cells));
-  auto updateReach = [&](size_t c) {
-    reach[c].clear();
-    reach[c].insert(c);
-    for (int pi : g.outgoing[c]) reach[c].unite(*might[pi]);
-  };
-  for (size_t c = 0; c < cells; ++c) updateReach(c);
-  tbb::enumerable_thread_specific<Searcher> searchers(
-      [&] { return Searcher(g, might, reach, cells, options.stabbing); });
-  const size_t wave = 8;
-  for (size_t w0 = 0; w0 < np; w0 += wave) {
-    const size_t w1 = std::min(np, w0 + wave);
-    auto searchRange = [&](size_t begin, size_t end) {
-      Searcher& s = searchers.local();
-      for (size_t k = begin; k < end; ++k) {
-        const int pi = order[k];
-        s.searchFrom(pi);
-        portalVis[pi] = s.visible;
+  const SearchInputs inputs{g, flood, portalVis, rank};
+  const size_t threads =
+      options.parallel ? static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))
+                       : 1;
+  std::vector<Searcher> searchers;
+  searchers.reserve(threads);
+  for (size_t t = 0; t < threads; ++t) searchers.emplace_back(inputs, cells, options.stabbing);
+  std::atomic<size_t> next{0}, finished{0};
+  std::atomic<bool> stop{false};
+  size_t reported = 0;  // the last count given to options.progress (from the calling thread)
+  std::unique_ptr<std::atomic<bool>[]> done(new std::atomic<bool>[np]);
+  for (size_t k = 0; k < np; ++k) done[k].store(false, std::memory_order_relaxed);
+  // One worker: searches ranks in increasing order until none is left. Every rank below the one
+  // it waits for has been taken by a running worker, and the lowest unfinished rank never waits,
+  // so the waiting always ends.
+  auto work = [&](Searcher& s, bool callingThread) {
+    size_t ready = 0;  // ranks below this are known done
+    for (;;) {
+      if (stop.load(std::memory_order_relaxed)) return;
+      const size_t k = next.fetch_add(1, std::memory_order_relaxed);
+      if (k >= np) return;
+      const size_t usable = k > kResultLag ? k - kResultLag : 0;
+      while (ready < usable) {
+        if (done[ready].load(std::memory_order_acquire)) {
+          ++ready;
+        } else {
+          if (stop.load(std::memory_order_relaxed)) return;
+          std::this_thread::yield();
+        }
       }
-    };
-    if (options.parallel) {
-      tbb::parallel_for(
-          tbb::blocked_range<size_t>(w0, w1, 1),
-          [&](const tbb::blocked_range<size_t>& r) { searchRange(r.begin(), r.end()); });
-    } else {
-      searchRange(w0, w1);
+      const int pi = order[k];
+      s.searchFrom(pi, usable);
+      portalVis[pi] = s.visible;
+      done[k].store(true, std::memory_order_release);
+      const size_t n = finished.fetch_add(1, std::memory_order_relaxed) + 1;
+      if (callingThread && options.progress) options.progress(reported = n, np);
     }
-    for (size_t k = w0; k < w1; ++k) might[order[k]] = &portalVis[order[k]];
-    for (size_t k = w0; k < w1; ++k) updateReach(static_cast<size_t>(g.portals[order[k]].from));
-    if (options.progress) options.progress(w1, np);
+  };
+  if (threads == 1) {
+    work(searchers[0], true);
+  } else {
+    tbb::task_group helpers;
+    for (size_t t = 1; t < threads; ++t) {
+      helpers.run([&, t] {
+        try {
+          work(searchers[t], false);
+        } catch (...) {
+          stop.store(true);  // no one waits for the rank this worker left unfinished
+          throw;
+        }
+      });
+    }
+    try {
+      work(searchers[0], true);
+    } catch (...) {
+      stop.store(true);
+      helpers.wait();
+      throw;
+    }
+    helpers.wait();
   }
+  if (options.progress && reported < np) options.progress(np, np);
   for (const Searcher& s : searchers) {
     result.stabbing += s.stabber.stats();
     result.sequencesSearched += s.sequences;

@@ -4,6 +4,7 @@
 // with the same exact test.
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -23,5 +24,21 @@ namespace gv {
 /// conservative), never admit a wrong one.
 void findSeparatingPlanes(std::span<const Vec3> source, std::span<const Vec3> pass,
                           std::vector<ClipPlane>& out);
+
+/// Where a lazy run of findSeparatingPlanes stands: the planes through the edges of family 0
+/// (edges of the source, vertices of the pass) and then family 1 (the reverse) before (family,
+/// edge) have been appended.
+struct SeparatorCursor {
+  int family = 0;
+  size_t edge = 0;
+  bool done() const { return family >= 2; }
+};
+
+/// The lazy form of findSeparatingPlanes, one edge at a time: appends the planes through the
+/// cursor's edge and advances it. Run from a fresh cursor until done(), it appends exactly the
+/// planes of findSeparatingPlanes, in the same order; a caller clipping a portal can stop early
+/// once the portal is clipped away.
+void appendNextSeparators(std::span<const Vec3> source, std::span<const Vec3> pass,
+                          SeparatorCursor& cursor, std::vector<ClipPlane>& out);
 
 }  // namespace gv

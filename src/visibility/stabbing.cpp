@@ -203,21 +203,27 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   // once the search has been this deep.
   if (levels_.size() <= depth_) levels_.resize(depth_ + 1);
   Level& level = levels_[depth_];
-  level.original.assign(portal.begin(), portal.end());
   level.clipped.assign(portal.begin(), portal.end());
   level.lpValid = options_.useLinearProgram;
   level.separators.clear();
-  level.separatorsKnown = false;
+  level.separatorCursor = SeparatorCursor{};
   level.lpPending = level.blocked = false;
   level.witness.reset();
   level.basis = SimplexBasis{};
   level.optimal = false;
   level.optimum = LpVector{};
-  const Vec3 newell = newellNormal(portal);
-  const bool degenerate = isDegenerate(portal, newell, tol_);
-  if (degenerate) ++stats_.degeneratePortals;
+  // The portal's own data, needed once it is past the clipping (which half the pushes are not).
+  Vec3 newell;
+  bool degenerate = false;
+  auto describe = [&] {
+    level.original.assign(portal.begin(), portal.end());
+    newell = newellNormal(portal);
+    degenerate = isDegenerate(portal, newell, tol_);
+    if (degenerate) ++stats_.degeneratePortals;
+  };
 
   if (depth_ == 0) {
+    describe();
     // The first portal fixes the LP frame.
     origin_ = portal.empty() ? Vec3{} : centroidOf(portal);
     scale_ = tol_.scale;
@@ -255,7 +261,6 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
 
   Level& prev = levels_[depth_ - 1];
   level.lpValid = level.lpValid && prev.lpValid;
-  level.source.assign(prev.source.begin(), prev.source.end());
   if (options_.clipBySeparatingPlanes) {
     // The line crosses the first portal's plane once, forward: everything later is in front.
     if (!firstDegenerate_) {
@@ -263,19 +268,26 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
     }
     // Separating planes of (first, previous) portal; needs two distinct portals before this one.
     if (!level.clipped.empty() && depth_ >= 2) {
-      if (!prev.separatorsKnown) {
-        findSeparatingPlanes(prev.source, prev.clipped, prev.separators);
-        prev.separatorsKnown = true;
-      }
-      for (const ClipPlane& plane : prev.separators) {
+      // Found lazily, an edge at a time, and kept for the siblings: a portal clipped away by
+      // the first few planes needs no more of them.
+      for (size_t k = 0; !level.clipped.empty();) {
+        if (k == prev.separators.size()) {
+          if (prev.separatorCursor.done()) break;
+          appendNextSeparators(prev.source, prev.clipped, prev.separatorCursor, prev.separators);
+          continue;
+        }
+        const ClipPlane& plane = prev.separators[k++];
         clipInPlace(level.clipped, plane.unitNormal, plane.offset, tol_.length(), dist_, scratch_);
-        if (level.clipped.empty()) break;
       }
     }
     if (level.clipped.empty()) {
       ++stats_.blockedByClipping;
       return StabbingResult::Blocked;
     }
+  }
+  describe();
+  level.source.assign(prev.source.begin(), prev.source.end());
+  if (options_.clipBySeparatingPlanes) {
     // Symmetrically, the line crosses the new portal's plane forward after crossing the first
     // portal: the first portal's useful part is behind that plane.
     if (!degenerate) {
@@ -407,7 +419,8 @@ void PortalSequenceStabber::lowerLazily(Level& level, size_t firstRow) const {
 
 // The LP point of the line from a to b (world points): its direction scaled to d·normal_ = 1
 // (false unless the line crosses the first portal's plane forward and lies in the box), t the
-// least value of rows [0, rowEnd).
+// least value of rows [0, rowEnd); false as soon as a row puts t below the "not blocked"
+// threshold (rows from the newest: the new portal's are the likeliest to).
 bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEnd,
                                       LpVector& x) const {
   const Vec3 p = toLocal(a);
@@ -420,11 +433,13 @@ bool PortalSequenceStabber::linePoint(const Vec3& a, const Vec3& b, size_t rowEn
   x[0] = d[j0], x[1] = d[j1], x[2] = m.x, x[3] = m.y, x[4] = m.z;
   for (int j = 0; j < kT; ++j)
     if (!(std::abs(x[j]) <= kStabbingMaxGrazingSlope)) return false;
+  const double threshold = options_.blockedBelow * sizeOf(x);
   double t = kStabbingMaxGrazingSlope;
-  for (size_t i = 0; i < rowEnd; ++i) {
+  for (size_t i = rowEnd; i-- > 0;) {
     double rest = rows_[i].b;
     for (int j = 0; j < kT; ++j) rest -= rows_[i].a[j] * x[j];
     t = std::min(t, rest / rows_[i].a[kT]);
+    if (t < threshold) return false;
   }
   x[kT] = std::max(t, lpBoxLo()[kT]);
   return true;
@@ -440,7 +455,7 @@ std::optional<StabbingResult> PortalSequenceStabber::tryLpWithoutSolve(size_t in
     const LpVector saved = level.optimum;
     const bool savedOptimal = level.optimal;
     lowerLazily(level, first);
-    if (level.optimum[kT] >= -kStabbingLpMargin * sizeOf(level.optimum))
+    if (level.optimum[kT] >= options_.blockedBelow * sizeOf(level.optimum))
       return StabbingResult::Unresolved;
     level.optimum = saved;
     level.optimal = savedOptimal;
@@ -455,7 +470,7 @@ std::optional<StabbingResult> PortalSequenceStabber::tryLpWithoutSolve(size_t in
       if (from->empty()) continue;
       LpVector x;
       if (!linePoint(centroidOf(*from), target, level.constraintEnd, x)) continue;
-      if (x[kT] >= -kStabbingLpMargin * sizeOf(x)) {
+      if (x[kT] >= options_.blockedBelow * sizeOf(x)) {
         level.optimum = x;
         level.optimal = false;
         ++stats_.lpShortcuts;
@@ -492,7 +507,7 @@ StabbingResult PortalSequenceStabber::solveLp(size_t index) {
     level.basis = simplex.basis;
     level.optimum = simplex.x;
     level.optimal = true;
-    return simplex.certifiedUpperBound < -kStabbingLpMargin * sizeOf(simplex.x)
+    return simplex.certifiedUpperBound < options_.blockedBelow * sizeOf(simplex.x)
                ? StabbingResult::Blocked
                : StabbingResult::Unresolved;
   }
@@ -510,7 +525,7 @@ StabbingResult PortalSequenceStabber::solveLp(size_t index) {
     return StabbingResult::Unresolved;
   }
   level.optimum = *x;
-  if ((*x)[kT] < -kStabbingLpMargin * sizeOf(*x)) return StabbingResult::Blocked;
+  if ((*x)[kT] < options_.blockedBelow * sizeOf(*x)) return StabbingResult::Blocked;
   return StabbingResult::Unresolved;
 }
 

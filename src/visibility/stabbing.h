@@ -14,6 +14,7 @@
 #include "visibility/dual_simplex.h"
 #include "visibility/linear_program.h"
 #include "visibility/portal_clipping.h"
+#include "visibility/separator_search.h"
 #include "visibility/witness_line.h"
 
 namespace gv {
@@ -74,6 +75,13 @@ struct StabbingOptions {
   /// that need no answer for the level itself (the leaf PVS, when its cell is already visible).
   /// Ignored when seekWitness is set.
   bool deferLp = false;
+  /// The LP answers Blocked when even the best line's worst edge clearance t* (the LP's objective,
+  /// in scene-scaled units) is below this times the size of its coordinates. The default, a small
+  /// negative margin, never drops a line that touches the portals' edges (closed portals, the
+  /// conservative reading for rounding). A small positive value reads the portals as open: lines
+  /// that only graze an edge (clearance below it, a measure-tiny set no ray sampling proves)
+  /// are not sightlines. The clipping is unaffected (it keeps touching lines either way).
+  double blockedBelow = -kStabbingLpMargin;
 };
 
 /// An incremental stabbing-line test for a growing sequence of convex portals.
@@ -144,9 +152,9 @@ class PortalSequenceStabber {
     SimplexBasis basis;  // the last LP basis on this path: a warm start for deeper levels
     // Separating planes of (source, clipped): they clip every portal pushed after this level.
     std::vector<ClipPlane> separators;
-    bool separatorsKnown = false;
-    bool lpPending = false;  // the LP solve was deferred (deferLp)
-    bool blocked = false;    // the deferred solve proved the sequence blocked
+    SeparatorCursor separatorCursor;  // how far `separators` has been found (lazily)
+    bool lpPending = false;           // the LP solve was deferred (deferLp)
+    bool blocked = false;             // the deferred solve proved the sequence blocked
   };
 
   std::optional<StabbingResult> tryLpWithoutSolve(size_t index);
