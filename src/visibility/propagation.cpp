@@ -500,6 +500,10 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
       cellGraph.portals.push_back(
           {p.polygon.vertices, static_cast<int>(p.back), static_cast<int>(p.front), 0});
     LeafPvsOptions pvsOptions;
+    // Closed portals: the contract lists a pair if *any* segment between them is clear, grazing
+    // ones included, so the cell search keeps lines that only touch portal edges (the leaf PVS
+    // of `pvs` reads portals as open, kPvsEdgeClearance).
+    pvsOptions.stabbing.blockedBelow = -kStabbingLpMargin;
     pvsOptions.parallel = threads > 1;
     // Between waves of the search: progress, and the deadline (a wave is short).
     pvsOptions.progress = [&](size_t done, size_t total) {
