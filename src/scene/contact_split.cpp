@@ -3,10 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <numeric>
 #include <optional>
 #include <unordered_map>
+
+#include "geometry/box_sweep.h"
+#include "util/fnv_hash.h"
 
 namespace gv {
 namespace {
@@ -88,24 +89,13 @@ std::vector<std::vector<uint32_t>> shadowingPatches(const Scene& scene, const To
     boxes[i].lo = boxes[i].lo - Vec3{grow, grow, grow};
     boxes[i].hi = boxes[i].hi + Vec3{grow, grow, grow};
   }
-  std::vector<uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(),
-            [&](uint32_t a, uint32_t b) { return boxes[a].lo.x < boxes[b].lo.x; });
   std::vector<std::vector<uint32_t>> shadowsOf(n);
-  for (size_t i = 0; i < n; ++i) {
-    const uint32_t a = order[i];
-    for (size_t j = i + 1; j < n && boxes[order[j]].lo.x <= boxes[a].hi.x; ++j) {
-      const uint32_t b = order[j];
-      if (boxes[b].lo.y > boxes[a].hi.y || boxes[a].lo.y > boxes[b].hi.y ||
-          boxes[b].lo.z > boxes[a].hi.z || boxes[a].lo.z > boxes[b].hi.z)
-        continue;
-      const ConvexPolygon& pa = scene.patches[a].polygon;
-      const ConvexPolygon& pb = scene.patches[b].polygon;
-      if (shadows(pb, pa, tol)) shadowsOf[a].push_back(b);
-      if (shadows(pa, pb, tol)) shadowsOf[b].push_back(a);
-    }
-  }
+  forEachOverlappingBoxPair(boxes, 0.0, [&](uint32_t a, uint32_t b) {
+    const ConvexPolygon& pa = scene.patches[a].polygon;
+    const ConvexPolygon& pb = scene.patches[b].polygon;
+    if (shadows(pb, pa, tol)) shadowsOf[a].push_back(b);
+    if (shadows(pa, pb, tol)) shadowsOf[b].push_back(a);
+  });
   for (auto& s : shadowsOf) std::sort(s.begin(), s.end());
   return shadowsOf;
 }
@@ -164,13 +154,9 @@ void mergePieces(std::vector<ConvexPolygon>& pieces,
   // Candidates: pieces with an edge running the other way between the same two points (the two
   // sides of one cut carry bit-identical cut points).
   const auto key = [](const Vec3& a, const Vec3& b) {
-    uint64_t h = 1469598103934665603ull;
-    for (const double d : {a.x, a.y, a.z, b.x, b.y, b.z}) {
-      uint64_t bits;
-      std::memcpy(&bits, &d, sizeof bits);
-      h = (h ^ bits) * 1099511628211ull;
-    }
-    return h;
+    Fnv1a h;
+    for (const Vec3& v : {a, b}) h.bytes(&v, sizeof v);
+    return h.value();
   };
   std::vector<bool> alive(pieces.size(), true);
   for (bool merged = true; merged;) {
