@@ -98,19 +98,7 @@ Scene importWithAssimp(const std::string& path) {
         polygon.push_back({p.x, p.y, p.z});
       }
       const FacePatches converted = faceToPatches(polygon, tol);
-      switch (converted.outcome) {
-        case FaceOutcome::Degenerate:
-          ++report.droppedDegenerate;
-          continue;
-        case FaceOutcome::SplitConvex:
-          ++report.splitNonConvex;
-          break;
-        case FaceOutcome::Triangulated:
-          ++report.triangulatedNonPlanar;
-          break;
-        case FaceOutcome::Convex:
-          break;
-      }
+      if (!countFaceOutcome(converted.outcome, report)) continue;
       uint32_t material = mesh.mMaterialIndex;
       if (material >= scene.materials.size()) {
         if (defaultMaterial == UINT32_MAX)

@@ -134,4 +134,21 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
   return result;
 }
 
+bool countFaceOutcome(FaceOutcome outcome, ImportReport& report) {
+  switch (outcome) {
+    case FaceOutcome::Degenerate:
+      ++report.droppedDegenerate;
+      return false;
+    case FaceOutcome::SplitConvex:
+      ++report.splitNonConvex;
+      break;
+    case FaceOutcome::Triangulated:
+      ++report.triangulatedNonPlanar;
+      break;
+    case FaceOutcome::Convex:
+      break;
+  }
+  return true;
+}
+
 }  // namespace gv

@@ -5,6 +5,7 @@
 
 #include "geometry/convex_polygon.h"
 #include "geometry/tolerance.h"
+#include "scene/scene.h"
 
 namespace gv {
 
@@ -27,5 +28,8 @@ struct FacePatches {
 /// self-intersecting faces are fan-triangulated and the triangles that face backwards dropped.
 /// Vertices of the output are input vertices: nothing is moved or re-projected.
 FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol);
+
+/// Counts what happened to a face in the importer's report; false when the face was dropped.
+bool countFaceOutcome(FaceOutcome outcome, ImportReport& report);
 
 }  // namespace gv

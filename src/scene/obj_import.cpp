@@ -115,19 +115,7 @@ Scene importObjText(const std::string& path, const std::string& text) {
       offset += count;
       ++report.facesIn;
       const FacePatches converted = faceToPatches(face, tol);
-      switch (converted.outcome) {
-        case FaceOutcome::Degenerate:
-          ++report.droppedDegenerate;
-          continue;
-        case FaceOutcome::SplitConvex:
-          ++report.splitNonConvex;
-          break;
-        case FaceOutcome::Triangulated:
-          ++report.triangulatedNonPlanar;
-          break;
-        case FaceOutcome::Convex:
-          break;
-      }
+      if (!countFaceOutcome(converted.outcome, report)) continue;
       const int mid = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
       uint32_t material;
       if (mid >= 0 && static_cast<size_t>(mid) < materials.size()) {
