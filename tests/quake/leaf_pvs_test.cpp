@@ -208,7 +208,9 @@ TEST(LeafPvsRealMap, QbspFeaturesContainsEveryRayPairAndMatchesVis) {
   // vis's full mean is 154 (README). vis divides the total by the leafs + 1 (the outside leaf
   // counts): by that count ours must be no larger.
   RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
-  EXPECT_LE(pvs.meanLeafsVisible * prt.leafCount / (prt.leafCount + 1.0), 154 + 0.05);
+  EXPECT_LE(pvs.meanLeafsVisible * static_cast<double>(prt.leafCount) /
+                (static_cast<double>(prt.leafCount) + 1),
+            154 + 0.05);
   // Serial and parallel give identical output.
   LeafPvsOptions serial;
   serial.parallel = false;
@@ -237,7 +239,9 @@ TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnes
   EXPECT_GT(checkAgainstRays(prt, pvs, 40000, 3), 500u);
   // vis's full mean is 347 (README); ours is 348.0 over the 351 leafs, which is 347.0 by vis's
   // count (the total over the leafs + 1, the outside leaf counting): no larger.
-  EXPECT_LE(pvs.meanLeafsVisible * prt.leafCount / (prt.leafCount + 1.0), 347 + 0.05);
+  EXPECT_LE(pvs.meanLeafsVisible * static_cast<double>(prt.leafCount) /
+                (static_cast<double>(prt.leafCount) + 1),
+            347 + 0.05);
   EXPECT_EQ(pvs.stabbing.stabbed, 0u);  // no witness search by default
   // Witness lines only tell Stabbed from Unresolved: the pruning, hence the PVS, is the same.
   LeafPvsOptions withWitness;
@@ -287,13 +291,18 @@ TEST(LeafPvsRealMap, LightGeneralSameOutputOnAnyNumberOfThreadsAndProgressMaySto
 
 // E1M1 (1167 clusters) takes ~20 CPU seconds: disabled by default, run with
 // --gtest_also_run_disabled_tests --gtest_filter='*E1M1*'.
-TEST(LeafPvsRealMap, DISABLED_E1M1ContainsEveryRayPair) {
-  const PrtFile prt = sharedMap("E1M1-edited-ents");
+/// A big shared map's default PVS against 300,000 rays walked through its portals.
+void expectContainsEveryRayPair(const std::string& map, uint64_t seed) {
+  const PrtFile prt = sharedMap(map);
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   const LeafPvsResult pvs = computeLeafPvs(prt);
   expectSymmetricWithSelf(pvs);
-  EXPECT_GT(checkAgainstRays(prt, pvs, 300000, 4), 20000u);
-  RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
+  EXPECT_GT(checkAgainstRays(prt, pvs, 300000, seed), 20000u);
+  ::testing::Test::RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
+}
+
+TEST(LeafPvsRealMap, DISABLED_E1M1ContainsEveryRayPair) {
+  expectContainsEveryRayPair("E1M1-edited-ents", 4);
 }
 
 // Open portals (kPvsEdgeClearance) drop only pairs no ray reaches: for every cluster pair the
@@ -353,12 +362,7 @@ TEST(LeafPvsRealMap, DISABLED_E3m4OpenPortalsDropNoRayVisiblePair) {
 }
 
 TEST(LeafPvsRealMap, DISABLED_E3m4ContainsEveryRayPair) {
-  const PrtFile prt = sharedMap("e3m4");
-  if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
-  const LeafPvsResult pvs = computeLeafPvs(prt);
-  expectSymmetricWithSelf(pvs);
-  EXPECT_GT(checkAgainstRays(prt, pvs, 300000, 5), 20000u);
-  RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
+  expectContainsEveryRayPair("e3m4", 5);
 }
 
 }  // namespace

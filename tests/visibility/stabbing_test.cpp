@@ -250,19 +250,26 @@ Vec3 randomPointIn(std::mt19937_64& rng, const Winding& w) {
   return p;
 }
 
+/// A chain of `length` random portals climbing along +z, each tilted and shifted a little.
+std::vector<Winding> randomChain(std::mt19937_64& rng, int length) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Winding> seq;
+  Vec3 center{0, 0, 0};
+  for (int i = 0; i < length; ++i) {
+    const Vec3 n = normalize(Vec3{0.5 * u(rng), 0.5 * u(rng), 1});
+    seq.push_back(randomPortal(rng, center, n, 0.5 + 0.4 * u(rng)));
+    center += Vec3{0.6 * u(rng), 0.6 * u(rng), 0.5 + 0.5 * (u(rng) + 1)};
+  }
+  return seq;
+}
+
 TEST(StabbingRandom, NeverBlockedWhenSamplingFindsALine) {
   std::mt19937_64 rng(20261124);
   std::uniform_real_distribution<double> u(-1, 1);
   int sampledYes = 0, blocked = 0, stabbed = 0, chains = 0;
   for (int trial = 0; trial < 400; ++trial) {
     const int length = 3 + trial % 6;
-    std::vector<Winding> seq;
-    Vec3 center{0, 0, 0};
-    for (int i = 0; i < length; ++i) {
-      const Vec3 n = normalize(Vec3{0.5 * u(rng), 0.5 * u(rng), 1});
-      seq.push_back(randomPortal(rng, center, n, 0.5 + 0.4 * u(rng)));
-      center += Vec3{0.6 * u(rng), 0.6 * u(rng), 0.5 + 0.5 * (u(rng) + 1)};
-    }
+    const std::vector<Winding> seq = randomChain(rng, length);
     bool found = false;
     for (int s = 0; s < 3000 && !found; ++s) {
       const Vec3 a = randomPointIn(rng, seq.front()), b = randomPointIn(rng, seq.back());
@@ -340,13 +347,7 @@ TEST(StabbingIncremental, DeferredLpPrunesWhereTheImmediateLpDoes) {
   int lpBlocked = 0, deferredCaught = 0;
   for (int trial = 0; trial < 600; ++trial) {
     const int length = 3 + trial % 7;
-    std::vector<Winding> seq;
-    Vec3 center{0, 0, 0};
-    for (int i = 0; i < length; ++i) {
-      const Vec3 n = normalize(Vec3{0.5 * u(rng), 0.5 * u(rng), 1});
-      seq.push_back(randomPortal(rng, center, n, 0.5 + 0.4 * u(rng)));
-      center += Vec3{0.6 * u(rng), 0.6 * u(rng), 0.5 + 0.5 * (u(rng) + 1)};
-    }
+    const std::vector<Winding> seq = randomChain(rng, length);
     a.clear();
     b.clear();
     const uint64_t lpBefore = a.stats().blockedByLp;
