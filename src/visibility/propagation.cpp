@@ -36,6 +36,7 @@
 #include "visibility/blocker_lists.h"
 #include "visibility/facing_lines.h"
 #include "visibility/hull_overlap.h"
+#include "visibility/live_cells.h"
 #include "visibility/might_see.h"
 #include "visibility/patch_grid.h"
 
@@ -460,9 +461,15 @@ SequenceHistogram& SequenceHistogram::operator+=(const SequenceHistogram& o) {
   return *this;
 }
 
-VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
+VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
                                   const PropagationOptions& options) {
   const auto start = Clock::now();
+  // Regions no patch faces into (closed solids' insides) lose their portals first: the searches
+  // would walk them for nothing (live_cells.cpp says why nothing is lost).
+  const LiveCells live = findLiveCells(scene, input);
+  std::optional<Subdivision> pruned;
+  if (live.deadPortals > 0) pruned = withoutDeadPortals(input, live);
+  const Subdivision& sub = pruned ? *pruned : input;
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
   const int threads =
@@ -474,7 +481,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& sub,
         fmt::format("visibility: {} patches, at most {} supported", n, kMaxPatches - 1));
   st.patches = n;
   st.cells = sub.cells.size();
-  st.portals = sub.portals.size();
+  st.portals = input.portals.size();
+  st.deadCells = live.deadCells;
+  st.deadPortals = live.deadPortals;
   st.threads = threads;
 
   // Cell to cell (§4.1). Where the sets fit (portals × cells bits), the Quake-style search of

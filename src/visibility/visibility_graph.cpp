@@ -96,6 +96,8 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"patches", s.patches},
       {"cells", s.cells},
       {"portals", s.portals},
+      {"dead_cells", s.deadCells},
+      {"dead_portals", s.deadPortals},
       {"patch_pairs", pairs},
       {"pairs_listed", listed},
       {"pairs_listed_percent", pairs > 0 ? 100.0 * double(listed) / pairs : 0.0},

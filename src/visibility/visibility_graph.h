@@ -36,6 +36,9 @@ struct SequenceHistogram {
 /// The figures of §7.2 and §7.3 for one run.
 struct VisibilityStats {
   size_t patches = 0, cells = 0, portals = 0;
+  /// Cells in regions no patch faces into, and the portals among them (live_cells.h): left out
+  /// of every search.
+  size_t deadCells = 0, deadPortals = 0;
   uint64_t cellPairsVisible = 0;    ///< ordered (source, reached) cell pairs, source included
   uint64_t cellStabbingTests = 0;   ///< portal-sequence tests of the cell-to-cell search
   uint64_t patchStabbingTests = 0;  ///< tests of the patch searches (portals and targets)
