@@ -13,36 +13,21 @@
 
 namespace gv {
 
-namespace {
-
-/// The buffer is written out in blocks of about this size: the file has hundreds of millions of
-/// ids on big scenes, so numbers are formatted by hand (fmt::format_int) into one buffer.
-constexpr size_t kFlushBytes = size_t{1} << 20;
-
-}  // namespace
-
-VisibilityTxtWriter::VisibilityTxtWriter(const std::string& path) : path_(path) {
-  file_ = std::fopen(path.c_str(), "wb");
-  if (!file_) throw InputError(path, 0, std::string("cannot write: ") + std::strerror(errno));
-  buffer_.reserve(kFlushBytes + 64);
-  buffer_ += "# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n";
-  buffer_ += "# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n";
+VisibilityTxtWriter::VisibilityTxtWriter(const std::string& path) : file_(path) {
+  file_.append("# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");
+  file_.append("# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n");
 }
 
-VisibilityTxtWriter::~VisibilityTxtWriter() {
-  if (file_) std::fclose(file_);  // not closed: an exception is already on its way
-}
-
-void VisibilityTxtWriter::flush() {
-  if (!buffer_.empty() && std::fwrite(buffer_.data(), 1, buffer_.size(), file_) != buffer_.size())
-    throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
-  buffer_.clear();
-}
+VisibilityTxtWriter::~VisibilityTxtWriter() = default;
 
 void VisibilityTxtWriter::put(uint64_t v, char after) {
+  // Formatted by hand into the file's buffer: the file has hundreds of millions of ids on big
+  // scenes.
   const fmt::format_int digits(v);
-  buffer_.append(digits.data(), digits.size());
-  buffer_.push_back(after);
+  char* out = file_.room(digits.size() + 1);
+  std::memcpy(out, digits.data(), digits.size());
+  out[digits.size()] = after;
+  file_.commit(digits.size() + 1);
 }
 
 void VisibilityTxtWriter::add(uint32_t s, uint32_t r, std::span<const uint32_t> blockers) {
@@ -51,21 +36,13 @@ void VisibilityTxtWriter::add(uint32_t s, uint32_t r, std::span<const uint32_t> 
   put(blockers.size(), blockers.empty() ? '\n' : ' ');
   for (size_t k = 0; k < blockers.size(); ++k)
     put(blockers[k], k + 1 == blockers.size() ? '\n' : ' ');
-  if (buffer_.size() >= kFlushBytes) flush();
 }
 
 void VisibilityTxtWriter::add(const BlockerLists& lists) {
   for (size_t k = 0; k < lists.size(); ++k) add(lists.s(k), lists.r(k), lists.blockers(k));
 }
 
-void VisibilityTxtWriter::close() {
-  if (!file_) return;
-  flush();
-  std::FILE* f = file_;
-  file_ = nullptr;
-  if (std::fclose(f) != 0)
-    throw InputError(path_, 0, std::string("cannot write: ") + std::strerror(errno));
-}
+void VisibilityTxtWriter::close() { file_.close(); }
 
 void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path) {
   VisibilityTxtWriter out(path);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "util/bulk_file.h"
 #include "visibility/blocker_lists.h"
 #include "visibility/stabbing.h"
 
@@ -72,7 +73,8 @@ void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path);
 /// visibility.txt written as it is produced: the header when constructed, one line per add() in
 /// the order given (the contract's (s, r) order is the caller's), the rest on close(). Lets
 /// `globalvis vis` write the blocker lists without holding them all (PropagationOptions::
-/// interactionSink). Errors (open, write) throw InputError(path, 0, ...).
+/// interactionSink). Written through BulkFile (direct I/O where possible: these files reach
+/// gigabytes). Errors (open, write) throw InputError(path, 0, ...).
 class VisibilityTxtWriter {
  public:
   explicit VisibilityTxtWriter(const std::string& path);
@@ -89,10 +91,7 @@ class VisibilityTxtWriter {
 
  private:
   void put(uint64_t v, char after);
-  void flush();
-  std::string path_;
-  std::FILE* file_ = nullptr;
-  std::string buffer_;
+  BulkFile file_;
 };
 /// The statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
 nlohmann::json visibilityStatsJson(const VisibilityStats& stats);
