@@ -14,7 +14,8 @@
 namespace gv {
 
 VisibilityTxtWriter::VisibilityTxtWriter(const std::string& path) : file_(path) {
-  file_.append("# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");
+  file_.append(
+      "# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");
   file_.append("# n = 0: VISIBLE; n > 0: PARTIAL with its blockers; pairs not listed: INVISIBLE\n");
 }
 
@@ -42,7 +43,9 @@ void VisibilityTxtWriter::add(const BlockerLists& lists) {
   for (size_t k = 0; k < lists.size(); ++k) add(lists.s(k), lists.r(k), lists.blockers(k));
 }
 
-void VisibilityTxtWriter::close() { file_.close(); }
+void VisibilityTxtWriter::close() {
+  file_.close();
+}
 
 void writeVisibilityTxt(const VisibilityGraph& graph, const std::string& path) {
   VisibilityTxtWriter out(path);
