@@ -24,8 +24,8 @@ struct SimplexBasis {
 struct SimplexResult {
   enum class Status { Optimal, Failed };
   Status status = Status::Failed;
-  LpVector x{};          ///< the optimal vertex (Optimal only)
-  SimplexBasis basis;    ///< its tight constraints, a warm start for a superset of the rows
+  LpVector x{};        ///< the optimal vertex (Optimal only)
+  SimplexBasis basis;  ///< its tight constraints, a warm start for a superset of the rows
   /// A proven upper bound of max c·x over the box and the rows, from the final multipliers y >= 0
   /// alone: y·b + Σ_j max(r_j lo_j, r_j hi_j) with r = c − Aᵀy, plus a rounding allowance. Valid
   /// whatever the pivoting did; +inf when unknown.
@@ -38,7 +38,6 @@ struct SimplexResult {
 /// corner maximising c), pivot in the most violated row until none is violated. `Failed` on a
 /// singular basis or too many pivots (callers then use another method or stay conservative).
 SimplexResult maximizeDualSimplex(int dim, std::span<const LpConstraint> rows, const LpVector& c,
-                                  const LpVector& lo, const LpVector& hi,
-                                  const SimplexBasis& warm);
+                                  const LpVector& lo, const LpVector& hi, const SimplexBasis& warm);
 
 }  // namespace gv

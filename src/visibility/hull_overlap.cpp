@@ -75,22 +75,53 @@ bool PairHull::boxMeets(const Aabb& bBox) const {
   return boxesMeet(box_, bBox, eps_);
 }
 
+bool PairHull::separatesBox(const Aabb& box) const {
+  // The least n·x − c over the box, per plane, at the corner the normal points away from. Half
+  // the tolerance of margin: a vertex v in the box then has n·v − c >= −eps / 2 less rounding
+  // (~1e-16 of the scene), well above meetsInBox's −eps, so that plane separates its polygon.
+  const double margin = -0.5 * eps_;
+  for (size_t i = 0; i < c_.size(); ++i) {
+    const double least = (nx_[i] >= 0 ? nx_[i] * box.lo.x : nx_[i] * box.hi.x) +
+                         (ny_[i] >= 0 ? ny_[i] * box.lo.y : ny_[i] * box.hi.y) +
+                         (nz_[i] >= 0 ? nz_[i] * box.lo.z : nz_[i] * box.hi.z) - c_[i];
+    if (least >= margin) return true;
+  }
+  return false;
+}
+
 bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
   return boxesMeet(box_, bBox, eps_) && meetsInBox(b);
 }
 
 bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n, double len) const {
   // The hull's side planes first: they are prepared, and most separations are found there.
+  // `deep`: b's first vertex lies more than twice the tolerance inside every side plane. The
+  // side planes are all the hull's facets (s's and r's planes, and the planes through an edge of
+  // one and a vertex of the other: a facet with two vertices of one polygon holds an edge of it
+  // or is its plane), so a ball of radius 2 eps about that vertex lies in the hull, which then
+  // reaches beyond b's plane on both sides by more than the tolerance: b's own plane cannot
+  // separate either, and b meets the hull.
   const size_t planes = c_.size();
+  const Vec3& v0 = bv[0];
+  bool deep = true;
   for (size_t i = 0; i < planes; ++i) {
+    const double d0 = nx_[i] * v0.x + ny_[i] * v0.y + nz_[i] * v0.z - c_[i];
+    if (d0 < -eps_) {
+      deep = deep && d0 < -2 * eps_;
+      continue;
+    }
+    deep = false;
     bool separates = true;  // every vertex of b at or beyond the plane (within eps)
-    for (const Vec3& v : bv)
+    for (size_t k = 1; k < bv.size(); ++k) {
+      const Vec3& v = bv[k];
       if (nx_[i] * v.x + ny_[i] * v.y + nz_[i] * v.z - c_[i] < -eps_) {
         separates = false;
         break;
       }
+    }
     if (separates) return false;
   }
+  if (deep && planes > 0) return true;
   // b's own plane: separated when the hull lies on one side of it (within e) and b on it.
   if (!(len > 0)) return true;
   const double e = eps_ * len;

@@ -37,6 +37,10 @@ class PairHull {
   /// meetsInBox with the normal's length, length(normal), given (callers testing many pairs
   /// keep it per patch).
   bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal, double normalLength) const;
+  /// True when one side plane has all of `box` beyond it by at least half the tolerance: then
+  /// meetsInBox is false for every polygon inside the box (that plane separates it). Lets a
+  /// query over many candidates skip whole groups of them (PatchGrid::gatherInto).
+  bool separatesBox(const Aabb& box) const;
   /// The hull's bounding box (not grown by the tolerance).
   const Aabb& box() const { return box_; }
   /// Side planes kept (after removing repeats), for tests and statistics.

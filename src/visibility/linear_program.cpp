@@ -51,8 +51,7 @@ std::vector<LpConstraint>& SeidelLp::scratch(int level) {
 }
 
 std::optional<LpVector> SeidelLp::solve(int dim, std::span<const LpConstraint> constraints,
-                                        const LpVector& c, const LpVector& lo,
-                                        const LpVector& hi) {
+                                        const LpVector& c, const LpVector& lo, const LpVector& hi) {
   return extend(dim, constraints, 0, boxOptimum(dim, c, lo, hi), c, lo, hi);
 }
 
@@ -159,7 +158,8 @@ std::optional<LpVector> SeidelLp::onHyperplane(int dim, std::span<const LpConstr
   }
   // The recursion only touches deeper scratch levels, which exist already (see scratch()).
   std::optional<LpVector> y =
-      run(sub, std::span<const LpConstraint>(rows), 0, boxOptimum(sub, subC, subLo, subHi), subC, subLo, subHi, level + 1);
+      run(sub, std::span<const LpConstraint>(rows), 0, boxOptimum(sub, subC, subLo, subHi), subC,
+          subLo, subHi, level + 1);
   if (!y) return std::nullopt;
   LpVector x{};
   double xk = base;

@@ -46,11 +46,11 @@ class SeidelLp {
 
  private:
   std::optional<LpVector> run(int dim, std::span<const LpConstraint> constraints, size_t first,
-                              LpVector x, const LpVector& c, const LpVector& lo,
-                              const LpVector& hi, int level);
-  std::optional<LpVector> onHyperplane(int dim, std::span<const LpConstraint> constraints,
-                                       size_t i, const LpVector& c, const LpVector& lo,
-                                       const LpVector& hi, int level);
+                              LpVector x, const LpVector& c, const LpVector& lo, const LpVector& hi,
+                              int level);
+  std::optional<LpVector> onHyperplane(int dim, std::span<const LpConstraint> constraints, size_t i,
+                                       const LpVector& c, const LpVector& lo, const LpVector& hi,
+                                       int level);
   std::vector<LpConstraint>& scratch(int level);
 
   std::vector<std::vector<LpConstraint>> scratch_;

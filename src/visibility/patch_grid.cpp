@@ -123,7 +123,8 @@ void PatchGrid::gather(const Aabb& box, double slack, std::vector<uint32_t>& out
   out.resize(before + gatherInto(box, slack, out.data() + before));
 }
 
-size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out) const {
+size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out,
+                             const PairHull* hull) const {
   if (box.empty()) return 0;
   const Aabb& a = box;
   const double e = slack;
@@ -172,6 +173,7 @@ size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out) const
                              (a.lo.y <= cb.hi.y + e) & (cb.lo.y <= a.hi.y + e) &
                              (a.lo.z <= cb.hi.z + e) & (cb.lo.z <= a.hi.z + e);
           if (!meets) continue;
+          if (hull && hull->separatesBox(cb)) continue;
           const bool within = e >= 0 && a.lo.x <= cb.lo.x && cb.hi.x <= a.hi.x &&
                               a.lo.y <= cb.lo.y && cb.hi.y <= a.hi.y && a.lo.z <= cb.lo.z &&
                               cb.hi.z <= a.hi.z;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/vec3.h"
+#include "visibility/hull_overlap.h"
 
 namespace gv {
 
@@ -25,7 +26,10 @@ class PatchGrid {
   /// The same patches as gather(), written to out[0, count) (in the same order); returns the
   /// count. `out` must have room for patchCount() ids (a patch is written at most once, but
   /// every candidate's slot is written before its box test decides whether it stays).
-  size_t gatherInto(const Aabb& box, double slack, uint32_t* out) const;
+  /// With `hull`, the patches of a grid cell whose bounds the hull separates (PairHull::
+  /// separatesBox) may be left out: only patches that cannot meet the hull are.
+  size_t gatherInto(const Aabb& box, double slack, uint32_t* out,
+                    const PairHull* hull = nullptr) const;
   /// Patches stored (those with non-empty boxes).
   size_t patchCount() const { return ids_.size(); }
 

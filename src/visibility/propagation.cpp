@@ -716,8 +716,8 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
         Aabb box = patchBoxes[s];
         box.add(patchBoxes[t]);
         // The slack is PairHull's box tolerance: the grid does PairHull's box test.
-        const std::span<uint32_t> candidates(w.gathered.data(),
-                                             grid.gatherInto(box, tol.length(), w.gathered.data()));
+        const std::span<uint32_t> candidates(
+            w.gathered.data(), grid.gatherInto(box, tol.length(), w.gathered.data(), &hull));
         const auto& b = seen[t].seen;
         sortIds(candidates, w.bits);  // blockers come out sorted
         // Seen from T: by flags when there are many candidates to ask about (setting them

@@ -1,13 +1,13 @@
 // Ray-casting verification of a visibility graph (see verify.h).
 #include "visibility/verify.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 #include "raycast/embree_scene.h"
 
@@ -15,7 +15,9 @@ namespace gv {
 namespace {
 
 /// Uniform double in [0, 1) from one raw draw: the same on every standard library.
-double unit(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+double unit(std::mt19937_64& rng) {
+  return double(rng() >> 11) * 0x1.0p-53;
+}
 
 struct PatchSampler {
   std::vector<double> cumulative;  // area prefix sums
@@ -49,7 +51,8 @@ Vec3 cosineDirection(const Vec3& n, std::mt19937_64& rng) {
   const double r = std::sqrt(unit(rng)), phi = 2 * std::numbers::pi * unit(rng);
   const Vec3 t = normalize(std::abs(n.x) < 0.9 ? cross(n, {1, 0, 0}) : cross(n, {0, 1, 0}));
   const Vec3 b = cross(n, t);
-  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r * r));
+  return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) +
+         n * std::sqrt(std::max(0.0, 1 - r * r));
 }
 
 /// Does origin + t·d cross `poly` in double precision, at a t in [tMin, tMax]? (A crossing point
@@ -136,9 +139,10 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
     const uint32_t a = std::min(s, hit->patch), b = std::max(s, hit->patch);
     if (!listed.count((uint64_t(a) << 32) | b)) {
       if (report.examples.size() < kVerifyExamples)
-        report.examples.push_back(fmt::format("pair ({}, {}) not listed: ray from ({}, {}, {}) along "
-                                              "({}, {}, {}) meets {} first", a, b, o.x, o.y, o.z,
-                                              d.x, d.y, d.z, hit->patch));
+        report.examples.push_back(
+            fmt::format("pair ({}, {}) not listed: ray from ({}, {}, {}) along "
+                        "({}, {}, {}) meets {} first",
+                        a, b, o.x, o.y, o.z, d.x, d.y, d.z, hit->patch));
       ++report.missingPairs;
     }
   }
@@ -159,9 +163,10 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
     ++report.blockedSegments;
     if (in.blockers.empty()) {
       if (report.examples.size() < kVerifyExamples)
-        report.examples.push_back(fmt::format("VISIBLE pair ({}, {}) has a blocked segment ({}, {}, "
-                                              "{}) to ({}, {}, {})", in.s, in.r, p.x, p.y, p.z,
-                                              q.x, q.y, q.z));
+        report.examples.push_back(
+            fmt::format("VISIBLE pair ({}, {}) has a blocked segment ({}, {}, "
+                        "{}) to ({}, {}, {})",
+                        in.s, in.r, p.x, p.y, p.z, q.x, q.y, q.z));
       ++report.blockedVisible;
       continue;
     }
@@ -170,10 +175,10 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
           confirmedFirstHit(rays, scene, from, to - from, 1.0, in.s, in.r, offset, eps);
       if (hit && !std::binary_search(in.blockers.begin(), in.blockers.end(), hit->patch)) {
         if (report.examples.size() < kVerifyExamples)
-          report.examples.push_back(fmt::format("patch {} is met first on segment ({}, {}, {}) to "
-                                                "({}, {}, {}) of pair ({}, {}) but is not a blocker",
-                                                hit->patch, from.x, from.y, from.z, to.x, to.y, to.z,
-                                                in.s, in.r));
+          report.examples.push_back(
+              fmt::format("patch {} is met first on segment ({}, {}, {}) to "
+                          "({}, {}, {}) of pair ({}, {}) but is not a blocker",
+                          hit->patch, from.x, from.y, from.z, to.x, to.y, to.z, in.s, in.r));
         ++report.missingBlockers;
       }
     }

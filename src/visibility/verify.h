@@ -27,7 +27,7 @@ struct VerifyOptions {
 
 struct VerifyReport {
   uint64_t rays = 0, raysHittingFront = 0;
-  uint64_t missingPairs = 0;          ///< a ray from S met R's front first, (S, R) not listed
+  uint64_t missingPairs = 0;  ///< a ray from S met R's front first, (S, R) not listed
   uint64_t segments = 0, blockedSegments = 0;
   uint64_t blockedVisible = 0;        ///< a segment of a VISIBLE pair is blocked
   uint64_t missingBlockers = 0;       ///< the first patch met from S or R is not in the list

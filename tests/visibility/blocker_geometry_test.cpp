@@ -236,6 +236,72 @@ TEST(BlockerGrid, GatherReturnsExactlyTheMeetingBoxesOnce) {
   EXPECT_GT(returned, queries * 5);  // queries are not trivially empty
 }
 
+TEST(BlockerHull, ASeparatedBoxHoldsNoMeetingPolygon) {
+  // separatesBox(box) promises that no polygon inside the box meets the hull: checked on
+  // random polygons placed inside random boxes, with the brute-force oracle for the meeting ones.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  int separatedBoxes = 0, keptBoxes = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const ConvexPolygon s = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
+    const ConvexPolygon r = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
+    const PairHull hull(s, r, kTol);
+    std::vector<Vec3> points = s.vertices;
+    points.insert(points.end(), r.vertices.begin(), r.vertices.end());
+    const ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 1.5), randomNormal(rng), 0.3);
+    Aabb box = b.bounds();  // b's box, grown a little at random: b lies inside it
+    box.add(box.lo - Vec3{u(rng), u(rng), u(rng)} * 0.2);
+    box.add(box.hi + Vec3{u(rng), u(rng), u(rng)} * 0.2);
+    if (!hull.separatesBox(box)) {
+      ++keptBoxes;
+      continue;
+    }
+    ++separatedBoxes;
+    EXPECT_FALSE(hull.meets(b)) << "trial " << trial;
+    EXPECT_GT(separation(points, b).gap, 0) << "trial " << trial << ": b meets the hull";
+  }
+  EXPECT_GT(separatedBoxes, 200);  // both answers occur (in numbers)
+  EXPECT_GT(keptBoxes, 100);
+}
+
+TEST(BlockerGrid, AHullLeavesOutOnlyPatchesThatCannotMeetIt) {
+  // gatherInto with a hull may drop the patches of cells the hull separates: it must keep every
+  // patch whose polygon meets the hull (PairHull::meets) and drop some on these dense grids.
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<ConvexPolygon> polygons;
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 c{u(rng) * 10, u(rng) * 10, u(rng) * 10};
+    polygons.push_back(randomPolygon(rng, c, randomNormal(rng), 0.1 + 0.4 * u(rng)));
+    boxes.push_back(polygons.back().bounds());
+  }
+  const PatchGrid grid(boxes, 0.02);  // few cells: every level keeps per-cell bounds
+  size_t dropped = 0;
+  for (int q = 0; q < 200; ++q) {
+    const ConvexPolygon s =
+        randomPolygon(rng, Vec3{u(rng), u(rng), u(rng)} * 10, randomNormal(rng), 1.5);
+    const ConvexPolygon r =
+        randomPolygon(rng, Vec3{u(rng), u(rng), u(rng)} * 10, randomNormal(rng), 1.5);
+    const PairHull hull(s, r, kTol);
+    Aabb box = s.bounds();
+    box.add(r.bounds());
+    std::vector<uint32_t> all(grid.patchCount()), kept(grid.patchCount());
+    all.resize(grid.gatherInto(box, kTol.length(), all.data()));
+    kept.resize(grid.gatherInto(box, kTol.length(), kept.data(), &hull));
+    std::sort(all.begin(), all.end());
+    std::sort(kept.begin(), kept.end());
+    EXPECT_TRUE(std::includes(all.begin(), all.end(), kept.begin(), kept.end()));
+    dropped += all.size() - kept.size();
+    for (uint32_t p : all) {
+      if (!hull.meets(polygons[p], boxes[p])) continue;
+      EXPECT_TRUE(std::binary_search(kept.begin(), kept.end(), p))
+          << "query " << q << " lost " << p;
+    }
+  }
+  EXPECT_GT(dropped, 100u);
+}
+
 TEST(BlockerGrid, DegenerateInputs) {
   std::vector<uint32_t> got;
   PatchGrid none({});
