@@ -90,8 +90,12 @@ class VisibilityTxtWriter {
   void close();
 
  private:
+  /// Ids below this (7 digits at most, so the count fits in the packed word's top byte) get
+  /// their digits from packed_.
+  static constexpr uint64_t kPackedIds = 10'000'000;
   void put(uint64_t v, char after);
   BulkFile file_;
+  std::vector<uint64_t> packed_;  ///< per id: its digits, first in the lowest byte; count << 56
 };
 /// The statistics as JSON (§7.2–7.3 figures, the paper's own values alongside).
 nlohmann::json visibilityStatsJson(const VisibilityStats& stats);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -76,6 +77,35 @@ TEST(VisibilityTxtWriter, LinesAreThePapersFormatAndReadBack) {
   ASSERT_EQ(back.interactions.size(), 3u);
   EXPECT_EQ(back.interactions[1].blockers, (std::vector<uint32_t>{2, 3}));
   EXPECT_EQ(back.interactions[2].r, 1000000u);
+}
+
+TEST(VisibilityTxtWriter, EveryNumberOfDigitsIsWrittenAsDecimal) {
+  // The writer packs the digits of small ids once and formats large ones on the fly: every
+  // digit count and both sides of the switch (10^7) against std::ostringstream.
+  const auto dir = test::scratchDir();
+  std::vector<uint32_t> ids;
+  for (uint64_t p = 1; p <= 1000000000; p *= 10)
+    for (uint64_t v : {p - 1, p, p + 1, 2 * p + 7}) ids.push_back(static_cast<uint32_t>(v));
+  ids.push_back(4294967295u);
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+  std::string expected;
+  {
+    VisibilityTxtWriter w((dir / "d.txt").string());
+    for (int round = 0; round < 20000; ++round) {
+      const uint32_t s = ids[size_t(round) % ids.size()], r = s + 1 + uint32_t(round % 3);
+      const std::vector<uint32_t> blockers(ids.begin(), ids.begin() + round % 5);
+      w.add(s, r, blockers);
+      std::ostringstream line;
+      line << s << ' ' << r << ' ' << blockers.size();
+      for (uint32_t b : blockers) line << ' ' << b;
+      expected += line.str() + '\n';
+    }
+    w.close();
+  }
+  const std::string text = readAll(dir / "d.txt");
+  const size_t body = text.find("\n", text.find("\n") + 1) + 1;  // after the two comment lines
+  EXPECT_EQ(text.substr(body), expected);
 }
 
 TEST(VisibilityTxtWriter, UnwritablePathIsAnInputError) {
