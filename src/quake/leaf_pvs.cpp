@@ -129,8 +129,9 @@ struct Searcher {
   PortalSequenceStabber stabber;
   CellSet visible;
   std::vector<char> onPath;
-  std::vector<CellSet> frames;  // might-see set per depth
-  std::vector<int> path;        // the cells before the current one, source first
+  std::vector<CellSet> frames;               // might-see set per depth
+  std::vector<int> path;                     // the cells before the current one, source first
+  std::vector<std::vector<int>> laterExits;  // per depth, the portals recurse visits second
   uint64_t sequences = 0;
   std::vector<uint64_t> successes, failures;  // stabbing tests by sequence length (Fig. 13)
 
@@ -186,39 +187,58 @@ struct Searcher {
     return true;
   }
 
+  // The portals of `cell` into cells not yet visible first, then the others: the cells a search
+  // reaches do not depend on this order (each push's answer depends on its path alone, and a
+  // branch is pruned only when everything it might reach is already visible), but reaching new
+  // cells early lets more later branches be pruned.
   void recurse(int cell, size_t depth) {
+    // (`laterExits` grows in the calls below: it is indexed anew each time.)
+    while (laterExits.size() <= depth) laterExits.emplace_back();
+    laterExits[depth].clear();
     for (int ri : g.outgoing[cell]) {
-      const DirectedPortal& r = g.portals[ri];
-      if (onPath[r.to]) continue;  // a line meets a convex cell in one segment
-      frame(depth + 1);            // allocate first: references into `frames` are taken below
-      if (!frames[depth].contains(r.to)) continue;
-      // The reversed line leaves r.to through r's reverse portal (index ri ^ 1) and passes
-      // through every earlier cell of the path.
-      if (!reachesAll(might(ri ^ 1))) continue;
-      // Nothing this branch might reach is unseen: it cannot change the answer.
-      if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], might(ri), visible)) continue;
-      ++sequences;
-      // Entering a cell already seen, the push matters only for what lies behind it: its LP may
-      // wait until a deeper portal needs it.
-      const bool stabbed =
-          stabber.push(r.winding, visible.contains(r.to)) != StabbingResult::Blocked;
-      if (!stabbed && stabber.isTopBlocked()) {
-        // This cell's own sequence (length `depth`) was blocked after all: no push on it goes
-        // through. Its count moves from success to failure; the sequence r began is not counted.
-        --successes[depth];
-        count(depth, false);
-        return;
+      if (!visible.contains(g.portals[ri].to)) {
+        if (!visitExit(cell, depth, ri)) return;
+      } else {
+        laterExits[depth].push_back(ri);
       }
-      count(depth + 1, stabbed);
-      if (!stabbed) continue;
-      visible.insert(r.to);
-      onPath[r.to] = 1;
-      path.push_back(cell);
-      recurse(r.to, depth + 1);
-      path.pop_back();
-      onPath[r.to] = 0;
-      stabber.pop();
     }
+    for (size_t k = 0; k < laterExits[depth].size(); ++k)
+      if (!visitExit(cell, depth, laterExits[depth][k])) return;
+  }
+
+  // One step of recurse: the branch through portal `ri` of `cell`; false when the cell's own
+  // sequence proved blocked (nothing more can be pushed on it).
+  bool visitExit(int cell, size_t depth, int ri) {
+    const DirectedPortal& r = g.portals[ri];
+    if (onPath[r.to]) return true;  // a line meets a convex cell in one segment
+    frame(depth + 1);               // allocate first: references into `frames` are taken below
+    if (!frames[depth].contains(r.to)) return true;
+    // The reversed line leaves r.to through r's reverse portal (index ri ^ 1) and passes
+    // through every earlier cell of the path.
+    if (!reachesAll(might(ri ^ 1))) return true;
+    // Nothing this branch might reach is unseen: it cannot change the answer.
+    if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], might(ri), visible)) return true;
+    ++sequences;
+    // Entering a cell already seen, the push matters only for what lies behind it: its LP may
+    // wait until a deeper portal needs it.
+    const bool stabbed = stabber.push(r.winding, visible.contains(r.to)) != StabbingResult::Blocked;
+    if (!stabbed && stabber.isTopBlocked()) {
+      // This cell's own sequence (length `depth`) was blocked after all: no push on it goes
+      // through. Its count moves from success to failure; the sequence r began is not counted.
+      --successes[depth];
+      count(depth, false);
+      return false;
+    }
+    count(depth + 1, stabbed);
+    if (!stabbed) return true;
+    visible.insert(r.to);
+    onPath[r.to] = 1;
+    path.push_back(cell);
+    recurse(r.to, depth + 1);
+    path.pop_back();
+    onPath[r.to] = 0;
+    stabber.pop();
+    return true;
   }
 };
 

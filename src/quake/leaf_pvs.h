@@ -73,7 +73,9 @@ struct LeafPvsResult {
 /// every cell reached by a portal sequence that admits a stabbing line (through open portals with
 /// the default options: see kPvsEdgeClearance). Method:
 ///  1. might-see flood per directed portal (cheap plane tests, `vis -fast`-like);
-///  2. from each directed portal, depth-first search over the portal sequences it starts, pruned
+///  2. from each directed portal, depth-first search over the portal sequences it starts (at each
+///     cell, the portals into cells not yet visible first: the same cells are reached in any
+///     order, and reaching new ones early prunes more of the rest), pruned
 ///     when the stabbing test proves a sequence blocked, when the entered cell is already on the
 ///     path (a line meets a convex cell once), or when nothing the sequence might still reach is
 ///     unseen (might-see sets narrowed by the results of the portals searched at least 16 places
