@@ -52,6 +52,7 @@ Action addVerifyCommand(CLI::App& app) {
                                 {"blocked_segments", v.blockedSegments},
                                 {"blocked_visible", v.blockedVisible},
                                 {"missing_blockers", v.missingBlockers},
+                                {"offset_only_hits", v.offsetOnlyHits},
                                 {"invalid_pairs", v.invalidPairs},
                                 {"examples", v.examples},
                                 {"ok", v.ok()}};
@@ -64,6 +65,11 @@ Action addVerifyCommand(CLI::App& app) {
         "segments {} between listed pairs ({} blocked): blocked VISIBLE pairs {}, "
         "first hits missing from blocker lists {}\n",
         v.segments, v.blockedSegments, v.blockedVisible, v.missingBlockers);
+    if (v.offsetOnlyHits)
+      fmt::print(
+          "hits of segments moved {:g} of the diagonal off S and R that the segment between the "
+          "sampled points does not cross (not violations): {}\n",
+          kVerifyContactDistance, v.offsetOnlyHits);
     if (v.invalidPairs) fmt::print("pairs naming patches that do not exist: {}\n", v.invalidPairs);
     for (const std::string& e : v.examples) fmt::print("  {}\n", e);
     fmt::print("{}\n", v.ok() ? "OK: no violation" : "FAILED: violations found");

@@ -29,8 +29,12 @@ struct VerifyReport {
   uint64_t rays = 0, raysHittingFront = 0;
   uint64_t missingPairs = 0;  ///< a ray from S met R's front first, (S, R) not listed
   uint64_t segments = 0, blockedSegments = 0;
-  uint64_t blockedVisible = 0;        ///< a segment of a VISIBLE pair is blocked
-  uint64_t missingBlockers = 0;       ///< the first patch met from S or R is not in the list
+  uint64_t blockedVisible = 0;   ///< a segment of a VISIBLE pair is blocked
+  uint64_t missingBlockers = 0;  ///< the first patch met from S or R is not in the list
+  /// Hits of a segment moved off S and R by kVerifyContactDistance that the segment between the
+  /// sampled points of S and R itself does not cross (nearly coplanar, nearly touching patches):
+  /// not segments of the contract, so not violations. Counted to show how often it happens.
+  uint64_t offsetOnlyHits = 0;
   uint64_t invalidPairs = 0;          ///< listed pairs with ids out of range
   std::vector<std::string> examples;  ///< the first few violations, described
   bool ok() const { return missingPairs + blockedVisible + missingBlockers + invalidPairs == 0; }

@@ -73,5 +73,40 @@ TEST(VerifyChecks, CleanResultPassesAndEveryViolationKindIsCaught) {
   }
 }
 
+TEST(VerifyChecks, HitsOfTheOffsetSegmentThatTheSegmentItselfMissesAreNotViolations) {
+  // Two floor quads facing up, the far one tilted up by 1e-7 (so they face each other at a
+  // grazing angle), and a fence standing between them whose bottom edge is 1e-6 above the floor:
+  // every segment between the quads passes under the fence (at most ~1e-7 high), so the pair is
+  // VISIBLE, but verify's segments start and end kVerifyContactDistance (3e-6 here) above the
+  // quads and run into the fence. Those hits are not the contract's and must not be reported.
+  Scene scene;
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  auto add = [&](std::vector<Vec3> v) {
+    Patch p;
+    p.polygon = *ConvexPolygon::fromVertices(v, Tolerance{4});
+    p.material = m;
+    scene.patches.push_back(p);
+  };
+  add({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});                    // S, facing up
+  add({{2, 0, 0}, {3, 0, 1e-7}, {3, 1, 1e-7}, {2, 1, 0}});              // R, facing up, tilted
+  add({{1.5, 0, 1e-6}, {1.5, 1, 1e-6}, {1.5, 1, 0.5}, {1.5, 0, 0.5}});  // the fence, facing -x
+  VisibilityGraph graph;
+  graph.interactions = {{0, 1, {}}};
+  VerifyOptions o;
+  o.rays = 0;
+  o.segments = 2000;
+  const VerifyReport r = verifyVisibility(scene, graph, o);
+  EXPECT_GT(r.segments, 1000u);
+  EXPECT_GT(r.offsetOnlyHits, 1000u);  // the offset segments did run into the fence
+  EXPECT_EQ(r.blockedVisible, 0u);
+  EXPECT_TRUE(r.ok()) << (r.examples.empty() ? "" : r.examples[0]);
+  // A fence reaching down to the floor blocks the segments themselves: a violation.
+  scene.patches[2].polygon = *ConvexPolygon::fromVertices(
+      {{1.5, 0, -0.1}, {1.5, 1, -0.1}, {1.5, 1, 0.5}, {1.5, 0, 0.5}}, Tolerance{4});
+  const VerifyReport blocked = verifyVisibility(scene, graph, o);
+  EXPECT_GT(blocked.blockedVisible, 1000u);
+  EXPECT_FALSE(blocked.ok());
+}
+
 }  // namespace
 }  // namespace gv
