@@ -12,13 +12,6 @@
 namespace gv {
 namespace {
 
-std::string readAll(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 size_t countLines(const std::string& text, const std::string& prefix) {
   size_t n = 0;
   std::istringstream in(text);
@@ -33,7 +26,7 @@ TEST(SubdivisionCli, WritesCellsPortalsAndStats) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   r = test::runCli("cells '" + obj + "' -o '" + (dir / "out").string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  const auto stats = nlohmann::json::parse(readAll(dir / "out" / "stats.json"));
+  const auto stats = nlohmann::json::parse(test::readFile(dir / "out" / "stats.json"));
   const size_t cells = stats.at("leaf_cells").get<size_t>();
   const size_t portals = stats.at("portals").get<size_t>();
   EXPECT_GT(cells, 100u);
@@ -42,8 +35,8 @@ TEST(SubdivisionCli, WritesCellsPortalsAndStats) {
   EXPECT_GT(stats.at("mean_coaffine_patches_per_cell").get<double>(), 0.0);
   EXPECT_GE(stats.at("bsp_seconds").get<double>(), 0.0);
   EXPECT_GE(stats.at("portal_seconds").get<double>(), 0.0);
-  EXPECT_EQ(countLines(readAll(dir / "out" / "cells.obj"), "g cell_"), cells);
-  const std::string portalObj = readAll(dir / "out" / "portals.obj");
+  EXPECT_EQ(countLines(test::readFile(dir / "out" / "cells.obj"), "g cell_"), cells);
+  const std::string portalObj = test::readFile(dir / "out" / "portals.obj");
   EXPECT_EQ(countLines(portalObj, "g portal_"), portals);
   EXPECT_EQ(countLines(portalObj, "f "), portals);
 }

@@ -39,13 +39,6 @@ void expectKeys(const json& j, std::initializer_list<const char*> keys) {
     EXPECT_TRUE(j.contains(k)) << "missing key " << k << " in " << j.dump();
 }
 
-std::string readText(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 const std::string kQuakeDir = std::string(GV_SHARED_DATA_DIR) + "/quake/";
 
 class JsonCliTest : public ::testing::Test {
@@ -63,7 +56,7 @@ TEST_F(JsonCliTest, CellsVisVerifyPrintOneObject) {
   expectKeys(cells, {"scene", "patches", "leaf_cells", "portals", "bsp_seconds", "portal_seconds"});
   EXPECT_EQ(cells["patches"], 19);
   // The same figures as the stats.json it writes.
-  const json written = json::parse(readText(dir_ / "cells" / "stats.json"));
+  const json written = json::parse(test::readFile(dir_ / "cells" / "stats.json"));
   EXPECT_EQ(cells["leaf_cells"], written["leaf_cells"]);
 
   const json vis = runJson("vis " + quoted(obj_) + " -o " + quoted(dir_ / "vis") + " --json");
@@ -81,7 +74,7 @@ TEST_F(JsonCliTest, RadiosityPrintsItsStats) {
   const json r = runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "rad") +
                          " --no-pictures --max-refinements 1 --rays 4 --json");
   expectKeys(r, {"scene", "output"});
-  const json written = json::parse(readText(dir_ / "rad" / "stats.json"));
+  const json written = json::parse(test::readFile(dir_ / "rad" / "stats.json"));
   for (const auto& [key, value] : written.items()) EXPECT_EQ(r[key], value) << key;
 }
 
@@ -172,7 +165,7 @@ TEST(BenchCli, UpdateDocsRewritesOnlyItsSection) {
   const std::string args = "bench --no-maps --office-patches 150 --update-docs " + quoted(md);
   ASSERT_EQ(test::runCli(args).exitCode, 0);
   ASSERT_EQ(test::runCli(args).exitCode, 0);
-  const std::string text = readText(md);
+  const std::string text = test::readFile(md);
   EXPECT_EQ(text.rfind("# Benchmarks\n\nHand-written text.\n", 0), 0u) << text;
   auto occurrences = [&](const std::string& what) {
     size_t n = 0;
@@ -211,8 +204,8 @@ TEST(ProgressOutput, ABarOnATerminal) {
   ASSERT_EQ(test::runCli("gen office -o " + quoted(obj)).exitCode, 0);
   // `script` runs the command on a pseudo-terminal: stderr is a terminal there. No first-draw
   // delay, so that the bars show however fast the machine is.
-  const std::string command = std::string("GLOBALVIS_PROGRESS_DELAY=0 '") + GV_CLI_PATH +
-                              "' vis " + quoted(obj) + " -o " + quoted(dir / "vis") +
+  const std::string command = std::string("GLOBALVIS_PROGRESS_DELAY=0 '") + GV_CLI_PATH + "' vis " +
+                              quoted(obj) + " -o " + quoted(dir / "vis") +
                               " --threads 1 > /dev/null";
   const auto r = test::runShell("script -qec \"" + command + "\" /dev/null");
   ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -116,20 +116,20 @@ TEST(ReportCli, ReportOfARunHasItsTablesAndFigures) {
 
   const auto r = test::runCli("report " + test::quotedPath(dir));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  const std::string page = test::readText(dir / "report.html");
+  const std::string page = test::readFile(dir / "report.html");
   for (const char* id : {"table-7-1", "table-7-2", "table-fig13", "table-7-3", "table-1-paper",
                          "table-1-run", "table-timings"})
     EXPECT_NE(page.find(std::string("id=\"") + id + "\""), std::string::npos) << id;
   EXPECT_NE(page.find("<svg class=\"chart\""), std::string::npos);
 
   // Figures of the run, counted from its files rather than taken from its stats.
-  const std::string cellsObj = test::readText(dir / "cells" / "cells.obj");
+  const std::string cellsObj = test::readFile(dir / "cells" / "cells.obj");
   std::set<std::string> cells;
   const std::regex group("\ng (cell_[0-9]+)");
   for (auto it = std::sregex_iterator(cellsObj.begin(), cellsObj.end(), group);
        it != std::sregex_iterator(); ++it)
     cells.insert((*it)[1]);
-  std::istringstream vis(test::readText(dir / "vis" / "visibility.txt"));
+  std::istringstream vis(test::readFile(dir / "vis" / "visibility.txt"));
   size_t pairs = 0, visible = 0;
   for (std::string line; std::getline(vis, line);) {
     if (line.empty() || line[0] == '#') continue;
@@ -154,7 +154,7 @@ TEST(ReportCli, ReportOfARunHasItsTablesAndFigures) {
                                        test::quotedPath(dir / "cells" / "r.html"));
   ASSERT_EQ(withViewer.exitCode, 0) << withViewer.output;
   EXPECT_TRUE(fs::is_regular_file(dir / "viewer.html"));
-  EXPECT_NE(test::readText(dir / "cells" / "r.html").find("src=\"../viewer.html\""),
+  EXPECT_NE(test::readFile(dir / "cells" / "r.html").find("src=\"../viewer.html\""),
             std::string::npos);
 #endif
 }

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "support/run_cli.h"
+#include "support/temp_dir.h"
 
 namespace gv::test {
 
@@ -18,13 +19,6 @@ inline std::string quotedPath(const std::filesystem::path& p) {
   std::string s = "'";
   s.append(p.string()).append("'");
   return s;
-}
-
-inline std::string readText(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 /// Removes a directory when the test process ends.

@@ -86,22 +86,22 @@ TEST(ViewCli, PageEmbedsTheRunAsItsFilesSayAndTheBundle) {
   const fs::path out = test::scratchDir() / "viewer.html";
   const auto r = test::runCli("view " + test::quotedPath(run) + " -o " + test::quotedPath(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  const std::string page = test::readText(out);
-  const std::string bundle = test::readText(GV_VIEWER_BUNDLE);
+  const std::string page = test::readFile(out);
+  const std::string bundle = test::readFile(GV_VIEWER_BUNDLE);
   ASSERT_GT(bundle.size(), 1000u);
   EXPECT_NE(page.find(bundle), std::string::npos) << "the bundle is not inlined as is";
   const json data = embeddedData(page);
   ASSERT_TRUE(data.is_object());
   EXPECT_EQ(data["format"], "globalvis-viewer-1");
 
-  const std::string patchesObj = test::readText(run / "vis" / "patches.obj");
+  const std::string patchesObj = test::readFile(run / "vis" / "patches.obj");
   const size_t patches = linesStartingWith(patchesObj, "f ");
   EXPECT_EQ(data["patches"]["sizes"].size(), patches);
   EXPECT_EQ(data["patches"]["material"].size(), patches);
   EXPECT_EQ(data["radiosity"].size(), 3 * patches);
 
   // visibility.txt, parsed here: every pair and blocker list in file order.
-  std::istringstream vis(test::readText(run / "vis" / "visibility.txt"));
+  std::istringstream vis(test::readFile(run / "vis" / "visibility.txt"));
   std::vector<uint32_t> s, rr, counts, blockers;
   for (std::string line; std::getline(vis, line);) {
     if (line.empty() || line[0] == '#') continue;
@@ -119,13 +119,13 @@ TEST(ViewCli, PageEmbedsTheRunAsItsFilesSayAndTheBundle) {
   EXPECT_EQ(data["pairs"]["blockerCounts"].get<std::vector<uint32_t> >(), counts);
   EXPECT_EQ(data["pairs"]["blockers"].get<std::vector<uint32_t> >(), blockers);
 
-  const std::string cellsObj = test::readText(run / "cells" / "cells.obj");
+  const std::string cellsObj = test::readFile(run / "cells" / "cells.obj");
   EXPECT_EQ(data["cells"]["sizes"].size(), linesStartingWith(cellsObj, "f "));
   EXPECT_EQ(data["cellCount"].get<size_t>(), linesStartingWith(cellsObj, "g cell_"));
-  const std::string portalsObj = test::readText(run / "cells" / "portals.obj");
+  const std::string portalsObj = test::readFile(run / "cells" / "portals.obj");
   EXPECT_EQ(data["portals"]["cells"].size(), 2 * linesStartingWith(portalsObj, "g portal_"));
 
-  const std::string ply = test::readText(run / "radiosity" / "elements.ply");
+  const std::string ply = test::readFile(run / "radiosity" / "elements.ply");
   std::smatch faces;
   ASSERT_TRUE(std::regex_search(ply, faces, std::regex("element face ([0-9]+)")));
   EXPECT_EQ(data["elements"]["faceSizes"].size(), std::stoul(faces[1]));

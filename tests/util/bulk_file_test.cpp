@@ -16,13 +16,6 @@
 namespace gv {
 namespace {
 
-std::string readAll(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 /// Writes `expected` (built here from a seeded generator) in pieces of random sizes, alternating
 /// the two ways of writing; returns what was written.
 std::string writeRandom(const std::filesystem::path& path, size_t bytes, uint32_t seed) {
@@ -53,7 +46,7 @@ TEST(BulkFile, WritesBackByteForByteAcrossBuffersAndAPartialLastBlock) {
   // Several buffers' worth, ending mid-block (the tail is written without direct I/O).
   const std::string expected = writeRandom(dir / "big.txt", 2 * BulkFile::kBufferBytes + 12345, 1);
   ASSERT_NE(expected.size() % BulkFile::kBlock, 0u);
-  EXPECT_EQ(readAll(dir / "big.txt"), expected);
+  EXPECT_EQ(test::readFile(dir / "big.txt"), expected);
 }
 
 TEST(BulkFile, SmallAndEmptyFiles) {
@@ -69,7 +62,7 @@ TEST(BulkFile, SmallAndEmptyFiles) {
     f.append("x\n");
     f.close();
   }
-  EXPECT_EQ(readAll(dir / "one.txt"), "x\n");
+  EXPECT_EQ(test::readFile(dir / "one.txt"), "x\n");
 }
 
 TEST(BulkFile, WorksOnAFileSystemWithoutDirectIo) {
@@ -77,7 +70,7 @@ TEST(BulkFile, WorksOnAFileSystemWithoutDirectIo) {
   if (!std::filesystem::is_directory("/dev/shm")) GTEST_SKIP() << "no /dev/shm here";
   const std::filesystem::path path = "/dev/shm/globalvis-bulk-file-test.txt";
   const std::string expected = writeRandom(path, BulkFile::kBufferBytes + 777, 2);
-  EXPECT_EQ(readAll(path), expected);
+  EXPECT_EQ(test::readFile(path), expected);
   std::filesystem::remove(path);
 }
 

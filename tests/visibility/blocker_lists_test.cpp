@@ -23,13 +23,6 @@
 namespace gv {
 namespace {
 
-std::string readAll(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 TEST(BlockerLists, HoldsPairsInOrderAndClears) {
   BlockerLists lists;
   EXPECT_TRUE(lists.empty());
@@ -60,7 +53,7 @@ TEST(VisibilityTxtWriter, LinesAreThePapersFormatAndReadBack) {
   VisibilityGraph g;
   g.interactions = {{0, 1, {}}, {0, 5, {2, 3}}, {4, 1000000, {7}}};
   writeVisibilityTxt(g, (dir / "a.txt").string());
-  const std::string text = readAll(dir / "a.txt");
+  const std::string text = test::readFile(dir / "a.txt");
   EXPECT_NE(text.find("\n0 1 0\n0 5 2 2 3\n4 1000000 1 7\n"), std::string::npos) << text;
   EXPECT_EQ(text.back(), '\n');
   // Lists added pair by pair, or as BlockerLists, give the same bytes.
@@ -72,7 +65,7 @@ TEST(VisibilityTxtWriter, LinesAreThePapersFormatAndReadBack) {
     w.close();
     w.close();  // idempotent
   }
-  EXPECT_EQ(readAll(dir / "b.txt"), text);
+  EXPECT_EQ(test::readFile(dir / "b.txt"), text);
   const VisibilityGraph back = readVisibilityTxt((dir / "b.txt").string());
   ASSERT_EQ(back.interactions.size(), 3u);
   EXPECT_EQ(back.interactions[1].blockers, (std::vector<uint32_t>{2, 3}));
@@ -103,7 +96,7 @@ TEST(VisibilityTxtWriter, EveryNumberOfDigitsIsWrittenAsDecimal) {
     }
     w.close();
   }
-  const std::string text = readAll(dir / "d.txt");
+  const std::string text = test::readFile(dir / "d.txt");
   const size_t body = text.find("\n", text.find("\n") + 1) + 1;  // after the two comment lines
   EXPECT_EQ(text.substr(body), expected);
 }
@@ -217,9 +210,9 @@ TEST(PropagationSink, VisCommandWritesTheInMemoryGraphsFile) {
   bsp.minCoverage = kVisibilityMinCoverage;  // vis's default
   const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene, bsp));
   writeVisibilityTxt(g, (dir / "memory.txt").string());
-  const std::string streamed = readAll(dir / "out" / "visibility.txt");
+  const std::string streamed = test::readFile(dir / "out" / "visibility.txt");
   EXPECT_GT(streamed.size(), 1000u);
-  EXPECT_TRUE(streamed == readAll(dir / "memory.txt"));
+  EXPECT_TRUE(streamed == test::readFile(dir / "memory.txt"));
 }
 
 }  // namespace
