@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -25,24 +24,19 @@ VisibilityTxtWriter::~VisibilityTxtWriter() = default;
 
 namespace {
 
-/// The decimal digits of v (at most 8 of them) packed into a word, first digit in the lowest
-/// byte (so that storing the word little-endian writes them in order), and their count.
-struct PackedDigits {
-  uint64_t bytes = 0;
-  uint32_t count = 0;
-};
-PackedDigits packDigits(uint64_t v) {
-  char digits[8];
+/// The decimal digits of v < 10^7 packed into a word, first digit in the lowest byte (so that
+/// storing the word little-endian writes them in order), their count in the top byte.
+uint64_t packDigits(uint64_t v) {
+  char digits[7];
   int count = 0;
   do {
     digits[count++] = static_cast<char>('0' + v % 10);
     v /= 10;
   } while (v != 0);
-  PackedDigits p;
+  uint64_t word = uint64_t(count) << 56;
   for (int i = 0; i < count; ++i)
-    p.bytes |= uint64_t(static_cast<unsigned char>(digits[count - 1 - i])) << (8 * i);
-  p.count = static_cast<uint32_t>(count);
-  return p;
+    word |= uint64_t(static_cast<unsigned char>(digits[count - 1 - i])) << (8 * i);
+  return word;
 }
 
 }  // namespace
@@ -56,16 +50,14 @@ void VisibilityTxtWriter::put(uint64_t v, char after) {
     if (v >= packed_.size()) {
       const size_t from = packed_.size();
       packed_.resize(std::min<uint64_t>(kPackedIds, std::max<uint64_t>(v + 1, 2 * from)));
-      for (size_t k = from; k < packed_.size(); ++k) {
-        const PackedDigits p = packDigits(k);
-        packed_[k] = p.bytes | uint64_t(p.count) << 56;  // 8 digits at most: top byte is free
-      }
+      for (size_t k = from; k < packed_.size(); ++k) packed_[k] = packDigits(k);
     }
     const uint64_t word = packed_[v];
     const auto count = static_cast<size_t>(word >> 56);
-    char* out = file_.room(sizeof(uint64_t) + 1);
-    const uint64_t digits = word & ((uint64_t{1} << 56) - 1);
-    std::memcpy(out, &digits, sizeof digits);  // little-endian: the digits in order
+    // All 8 bytes are stored (little-endian: the digits in order); `after` overwrites the byte
+    // after the digits, and the rest lies beyond what is committed.
+    char* out = file_.room(sizeof word + 1);
+    std::memcpy(out, &word, sizeof word);
     out[count] = after;
     file_.commit(count + 1);
     return;
