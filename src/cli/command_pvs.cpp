@@ -25,7 +25,7 @@ Action addPvsCommand(CLI::App& app) {
   struct State {
     std::string input, output;
     bool serial = false, quiet = false, noLp = false, backClip = false, json = false,
-         witness = false, closed = false;
+         witness = false, closed = false, bothSides = false;
   };
   auto s = std::make_shared<State>();
   cmd->add_option("portals", s->input, "Portal file written by qbsp (.prt)")->required();
@@ -44,6 +44,9 @@ Action addPvsCommand(CLI::App& app) {
                 "no edge by 1e-9 of the map's size: more leafs visible, slower)");
   cmd->add_flag("--witness", s->witness,
                 "Also look for exact witness lines (counts 'stabbed' sequences; same PVS, slower)");
+  cmd->add_flag("--both-sides", s->bothSides,
+                "Find every leaf pair from both of its leafs and keep it only if both found it "
+                "(the tightest PVS, 0.2-0.5 % smaller; 10-25 % slower)");
   return [s] {
     const auto t0 = Clock::now();
     auto elapsed = [&] { return secondsSince(t0); };
@@ -53,6 +56,7 @@ Action addPvsCommand(CLI::App& app) {
     options.stabbing.useLinearProgram = !s->noLp;
     options.stabbing.backClip = s->backClip;
     options.stabbing.seekWitness = s->witness;
+    options.bothSides = s->bothSides;
     if (s->closed) options.stabbing.blockedBelow = -kStabbingLpMargin;
     ProgressBar bar("pvs (directed portals)", !s->quiet && stderrIsTerminal());
     options.progress = bar.callback();
@@ -96,6 +100,7 @@ Action addPvsCommand(CLI::App& app) {
                                 {"deferred_blocked", st.deferredBlocked},
                                 {"simplex_fallbacks", st.simplexFallbacks},
                                 {"one_sided_pairs_dropped", pvs.oneSidedPairsDropped},
+                                {"settled_pairs", pvs.settledPairs},
                                 {"self_portals_skipped", prt.selfPortalsSkipped},
                                 {"seconds", elapsed()},
                                 {"flood_seconds", pvs.floodSeconds},

@@ -106,6 +106,39 @@ void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
   }
 }
 
+// The results a search of rank k may use: those of the searches ranked below this.
+size_t usableBound(size_t k) {
+  return k > kResultLag ? k - kResultLag : 0;
+}
+
+// The order of the searches (directed portals). `vis`'s order is increasing might-see size, so
+// that the small searches' results narrow the big ones'. `groupCells`: a cell's portals are kept
+// together (ordered by the largest might-see size among them, then by cell), so that cells are
+// settled early, but no portal is put later than the place twice its own size would give it.
+std::vector<int> searchOrder(const Graph& g, const std::vector<size_t>& floodSize,
+                             bool groupCells) {
+  const size_t np = g.portals.size();
+  std::vector<int> order(np);
+  for (size_t i = 0; i < np; ++i) order[i] = static_cast<int>(i);
+  if (!groupCells) {
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return floodSize[a] < floodSize[b]; });
+    return order;
+  }
+  std::vector<size_t> key(np);
+  for (const std::vector<int>& out : g.outgoing) {
+    size_t largest = 0;
+    for (int pi : out) largest = std::max(largest, floodSize[pi]);
+    for (int pi : out) key[pi] = std::min(largest, 2 * floodSize[pi]);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    if (key[a] != key[b]) return key[a] < key[b];
+    if (g.portals[a].from != g.portals[b].from) return g.portals[a].from < g.portals[b].from;
+    return floodSize[a] < floodSize[b];
+  });
+  return order;
+}
+
 // The inputs every search reads: the flood, and the finished searches' results. A search of
 // rank k (its place in the search order) reads the result of a directed portal of rank below
 // k - kResultLag, and the flood of any other: which results it may use depends only on k, never on
@@ -113,21 +146,35 @@ void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
 struct SearchInputs {
   const Graph& g;
   const std::vector<CellSet>& flood;
-  const std::vector<CellSet>& portalVis;  // per directed portal, its search's result once done
-  const std::vector<size_t>& rank;        // per directed portal, its place in the search order
+  // Per directed portal once its search is done: a superset of the cells sightlines through it
+  // reach (what it found, and the settled cells it might have reached).
+  const std::vector<CellSet>& portalVis;
+  const std::vector<size_t>& rank;  // per directed portal, its place in the search order
+  // Per cell, the rank from which on all its portals' results are usable (a search whose
+  // results bound is at least this settles the cell); empty with LeafPvsOptions::bothSides.
+  const std::vector<size_t>& cellDoneAt;
 };
 
 // One thread's search state.
 struct Searcher {
   Searcher(const SearchInputs& in, size_t cells, const StabbingOptions& options)
-      : g(in.g), inputs(in), stabber(in.g.tol, options), visible(cells), onPath(cells, 0) {}
+      : g(in.g),
+        inputs(in),
+        stabber(in.g.tol, options),
+        visible(cells),
+        found(cells),
+        settled(cells),
+        onPath(cells, 0) {}
 
   const Graph& g;
   const SearchInputs& inputs;
   // Results of directed portals ranked below this are used (see SearchInputs).
   size_t usableRanks = 0;
   PortalSequenceStabber stabber;
-  CellSet visible;
+  // The cells found (the search's result), the cells settled before it began (their own
+  // searches are all done and decided the pair), and their union: what the pruning counts as
+  // seen. A settled cell is still passed through, only nothing is looked for on its account.
+  CellSet visible, found, settled;
   std::vector<char> onPath;
   std::vector<CellSet> frames;               // might-see set per depth
   std::vector<int> path;                     // the cells before the current one, source first
@@ -158,7 +205,12 @@ struct Searcher {
   void searchFrom(int pi, size_t usable) {
     usableRanks = usable;
     const DirectedPortal& p = g.portals[pi];
-    visible.clear();
+    settled.clear();
+    for (size_t c = 0; c < inputs.cellDoneAt.size(); ++c)
+      if (inputs.cellDoneAt[c] <= usable) settled.insert(c);
+    found.clear();
+    found.insert(p.to);
+    visible = settled;
     visible.insert(p.to);
     stabber.clear();
     stabber.push(p.winding);  // one portal is always stabbed (never Blocked)
@@ -231,6 +283,7 @@ struct Searcher {
     }
     count(depth + 1, stabbed);
     if (!stabbed) return true;
+    if (!visible.contains(r.to)) found.insert(r.to);
     visible.insert(r.to);
     onPath[r.to] = 1;
     path.push_back(cell);
@@ -286,14 +339,26 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   //    done; no barrier between groups of searches, so threads idle only for such waits.
   const auto t1 = Clock::now();
   const size_t np = g.portals.size();
-  std::vector<int> order(np);
-  std::vector<size_t> floodSize(np), rank(np);
-  for (size_t i = 0; i < np; ++i) order[i] = static_cast<int>(i), floodSize[i] = flood[i].count();
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return floodSize[a] < floodSize[b]; });
+  std::vector<size_t> floodSize(np);
+  for (size_t i = 0; i < np; ++i) floodSize[i] = flood[i].count();
+  const std::vector<int> order = searchOrder(g, floodSize, !options.bothSides);
+  std::vector<size_t> rank(np);
   for (size_t k = 0; k < np; ++k) rank[order[k]] = k;
-  std::vector<CellSet> portalVis(np, CellSet(cells));
-  const SearchInputs inputs{g, flood, portalVis, rank};
+  // A cell is settled for the searches that may use all its portals' results; lastUsable: the
+  // latest results bound among the searches of its portals.
+  std::vector<size_t> cellDoneAt, lastUsable(cells, 0);
+  if (!options.bothSides) {
+    cellDoneAt.assign(cells, SIZE_MAX);  // a cell without portals is never settled
+    for (size_t c = 0; c < cells; ++c) {
+      for (int pi : g.outgoing[c]) {
+        const size_t after = rank[pi] + 1;
+        cellDoneAt[c] = cellDoneAt[c] == SIZE_MAX ? after : std::max(cellDoneAt[c], after);
+        lastUsable[c] = std::max(lastUsable[c], usableBound(rank[pi]));
+      }
+    }
+  }
+  std::vector<CellSet> portalVis(np, CellSet(cells)), portalFound(np, CellSet(cells));
+  const SearchInputs inputs{g, flood, portalVis, rank, cellDoneAt};
   const size_t threads =
       options.parallel ? static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))
                        : 1;
@@ -314,7 +379,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       if (stop.load(std::memory_order_relaxed)) return;
       const size_t k = next.fetch_add(1, std::memory_order_relaxed);
       if (k >= np) return;
-      const size_t usable = k > kResultLag ? k - kResultLag : 0;
+      const size_t usable = usableBound(k);
       while (ready < usable) {
         if (done[ready].load(std::memory_order_acquire)) {
           ++ready;
@@ -325,7 +390,10 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       }
       const int pi = order[k];
       s.searchFrom(pi, usable);
-      portalVis[pi] = s.visible;
+      portalFound[pi] = s.found;
+      // For the later searches' pruning, the settled cells it might have reached count too.
+      portalVis[pi].assignIntersection(s.frames[1], s.settled);
+      portalVis[pi].unite(s.found);
       done[k].store(true, std::memory_order_release);
       const size_t n = finished.fetch_add(1, std::memory_order_relaxed) + 1;
       if (callingThread && options.progress) options.progress(reported = n, np);
@@ -364,22 +432,37 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       for (size_t k = 0; k < from->size(); ++k) (*to)[k] += (*from)[k];
     }
   }
-  // A cell sees itself and what its portals see.
+  // A cell sees itself and what its portals found.
   std::vector<CellSet> seen(cells, CellSet(cells));
   for (size_t c = 0; c < cells; ++c) {
     seen[c].insert(c);
-    for (int pi : g.outgoing[c]) seen[c].unite(portalVis[pi]);
+    for (int pi : g.outgoing[c]) seen[c].unite(portalFound[pi]);
   }
   result.searchSeconds = secondsSince(t1);
 
-  // 3. Symmetrise: keep a pair only if each side's (conservative) search found the other.
+  // 3. Symmetrise: keep a pair only if each side's (conservative) search found the other; a
+  //    pair one side settled (b settled in a search of a's: then every search of b's came
+  //    earlier, with a not settled) stands on the other side's answer. Both cannot hold: each
+  //    needs the other cell's last portal searched more than kResultLag places earlier.
   std::vector<std::vector<int>> visibleCells(cells);
+  auto settledIn = [&](size_t a, size_t b) {
+    return !cellDoneAt.empty() && cellDoneAt[b] <= lastUsable[a];
+  };
   for (size_t a = 0; a < cells; ++a) {
     for (size_t b = 0; b < cells; ++b) {
-      if (!seen[a].contains(b)) continue;
-      if (seen[b].contains(a)) {
-        visibleCells[a].push_back(static_cast<int>(b));
+      bool keep;
+      if (settledIn(a, b)) {
+        keep = seen[b].contains(a);
+        ++result.settledPairs;
+      } else if (settledIn(b, a)) {
+        keep = seen[a].contains(b);
+        ++result.settledPairs;
       } else {
+        keep = seen[a].contains(b) && seen[b].contains(a);
+      }
+      if (keep) {
+        visibleCells[a].push_back(static_cast<int>(b));
+      } else if (seen[a].contains(b)) {
         ++result.oneSidedPairsDropped;
       }
     }

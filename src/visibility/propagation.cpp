@@ -513,6 +513,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
     // ones included, so the cell search keeps lines that only touch portal edges (the leaf PVS
     // of `pvs` reads portals as open, kPvsEdgeClearance).
     pvsOptions.stabbing.blockedBelow = -kStabbingLpMargin;
+    // The tightest cell visibility (it bounds every patch search; the cell search is a small
+    // part of `vis`).
+    pvsOptions.bothSides = true;
     pvsOptions.parallel = threads > 1;
     // Between waves of the search: progress, and the deadline (a wave is short).
     pvsOptions.progress = [&](size_t done, size_t total) {
