@@ -70,7 +70,8 @@ struct LeafPvsResult {
   /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
   std::vector<uint64_t> successesByLength, failuresByLength;
   /// Per directed portal (2i: portal i from clusterA into clusterB; 2i+1: the way back), the
-  /// clusters reached by the stabbable sequences it starts (before symmetrisation): a superset of
+  /// clusters reached by the stabbable sequences it starts (before symmetrisation; without
+  /// `bothSides`, with the settled clusters its search might have reached added): a superset of
   /// where any sightline continuing through it can go.
   std::vector<CellSet> portalFlow;
   double floodSeconds = 0, searchSeconds = 0;
