@@ -53,6 +53,7 @@ Action addVerifyCommand(CLI::App& app) {
                                 {"blocked_visible", v.blockedVisible},
                                 {"missing_blockers", v.missingBlockers},
                                 {"offset_only_hits", v.offsetOnlyHits},
+                                {"contact_first_hits", v.contactFirstHits},
                                 {"invalid_pairs", v.invalidPairs},
                                 {"examples", v.examples},
                                 {"ok", v.ok()}};
@@ -70,6 +71,11 @@ Action addVerifyCommand(CLI::App& app) {
           "hits of segments moved {:g} of the diagonal off S and R that the segment between the "
           "sampled points does not cross (not violations): {}\n",
           kVerifyContactDistance, v.offsetOnlyHits);
+    if (v.contactFirstHits)
+      fmt::print(
+          "unlisted hits of those segments behind a blocker the segment between the sampled "
+          "points meets first, within that distance of its end (not violations): {}\n",
+          v.contactFirstHits);
     if (v.invalidPairs) fmt::print("pairs naming patches that do not exist: {}\n", v.invalidPairs);
     for (const std::string& e : v.examples) fmt::print("  {}\n", e);
     fmt::print("{}\n", v.ok() ? "OK: no violation" : "FAILED: violations found");

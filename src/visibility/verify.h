@@ -35,6 +35,10 @@ struct VerifyReport {
   /// sampled points of S and R itself does not cross (nearly coplanar, nearly touching patches):
   /// not segments of the contract, so not violations. Counted to show how often it happens.
   uint64_t offsetOnlyHits = 0;
+  /// Unlisted first hits of the offset segment behind a listed blocker that the segment between
+  /// the sampled points meets first, closer than kVerifyContactDistance to its end (the offset
+  /// segment starts past it): the contract's first hit is that listed one, so not violations.
+  uint64_t contactFirstHits = 0;
   uint64_t invalidPairs = 0;          ///< listed pairs with ids out of range
   std::vector<std::string> examples;  ///< the first few violations, described
   bool ok() const { return missingPairs + blockedVisible + missingBlockers + invalidPairs == 0; }

@@ -108,5 +108,44 @@ TEST(VerifyChecks, HitsOfTheOffsetSegmentThatTheSegmentItselfMissesAreNotViolati
   EXPECT_FALSE(blocked.ok());
 }
 
+TEST(VerifyChecks, AListedBlockerMetWithinTheContactDistanceIsTheFirstHit) {
+  // S (z = 0, facing up) and R (z = 1, facing down) face each other. B1 lies 5e-7 above the
+  // near half of S (a solid's face resting on S, a little out of line), under verify's contact
+  // distance (1e-6 of the diagonal, 1.7e-6 here): the offset segments start past it. B2 lies
+  // over B1 at 1e-5 (only segments through B1 reach it), and B3 just under R covers R whole.
+  // Segments from the near half
+  // of S meet B1 first: with B1 and B3 listed that is not a violation, though the offset segment's
+  // first hit (B2) is unlisted; without B1 it is one.
+  Scene scene;
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  auto add = [&](std::vector<Vec3> v) {
+    Patch p;
+    p.polygon = *ConvexPolygon::fromVertices(v, Tolerance{2});
+    p.material = m;
+    scene.patches.push_back(p);
+  };
+  add({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});                  // 0: S, facing up
+  add({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});                  // 1: R, facing down
+  add({{0, 0, 5e-7}, {0, 1, 5e-7}, {0.5, 1, 5e-7}, {0.5, 0, 5e-7}});  // 2: B1, facing down
+  add({{0, 0, 1e-5}, {0, 1, 1e-5}, {0.5, 1, 1e-5}, {0.5, 0, 1e-5}});  // 3: B2, facing down
+  add({{0, 0, 0.9}, {1, 0, 0.9}, {1, 1, 0.9}, {0, 1, 0.9}});          // 4: B3, facing up
+  VerifyOptions o;
+  o.rays = 0;
+  o.segments = 2000;
+  VisibilityGraph graph;
+  graph.interactions = {{0, 1, {2, 4}}};
+  const VerifyReport r = verifyVisibility(scene, graph, o);
+  EXPECT_GT(r.blockedSegments, 1000u);
+  EXPECT_GT(r.contactFirstHits, 500u);  // about half the segments start under B1
+  EXPECT_TRUE(r.ok()) << (r.examples.empty() ? "" : r.examples[0]);
+  graph.interactions = {{0, 1, {4}}};
+  const VerifyReport without = verifyVisibility(scene, graph, o);
+  EXPECT_GT(without.missingBlockers, 500u);
+  EXPECT_EQ(without.contactFirstHits, 0u);
+  ASSERT_FALSE(without.examples.empty());
+  EXPECT_NE(without.examples[0].find("patch 2 is met first"), std::string::npos)
+      << without.examples[0];
+}
+
 }  // namespace
 }  // namespace gv
