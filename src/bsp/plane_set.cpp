@@ -26,8 +26,16 @@ PlaneSet PlaneSet::fromScene(const Scene& scene, const Tolerance& tol) {
   PlaneSet set;
   set.patchPlanes_.reserve(scene.patches.size());
 
-  // Largest angle between merged normals, from 1 - cos(angle) <= normalCos.
-  const double angle = std::sqrt(2.0 * tol.normalCos());
+  // Largest angle between merged normals. A patch joins a plane when every vertex lies within
+  // the offset tolerance of it (the model tolerance's own test), with normals agreeing to within
+  // this looser angle: the fitted normal of a small face whose vertices are off by a rounding
+  // error wobbles by that error over its diameter, far more than the plane tolerance's angle
+  // (a 1 m face with vertices 2e-5 out: 2e-5 rad), and two such faces of one wall left as
+  // separate planes 1e-5 apart make the BSP cut slivers between them that the searches do not
+  // cross (a room's floor and wall then miss each other: tests/visibility/messy_office_test).
+  constexpr double kMergeAngle = 1e-3;
+  const double angle = kMergeAngle;
+  const double mergeCos = std::cos(kMergeAngle);
   // The distance from the origin of the farthest patch point: the offsets of two planes whose
   // normals differ by `angle` differ by up to angle * radius more than their centroids do.
   double radius = 0;
@@ -48,6 +56,11 @@ PlaneSet PlaneSet::fromScene(const Scene& scene, const Tolerance& tol) {
     return k;
   };
 
+  auto withinOffset = [&](const Plane& rep, const ConvexPolygon& poly) {
+    for (const Vec3& v : poly.vertices)
+      if (!(std::abs(rep.distance(v)) <= tol.planeOffset())) return false;
+    return true;
+  };
   std::unordered_map<Key, std::vector<uint32_t>, KeyHash> buckets;
   buckets.reserve(scene.patches.size());
   for (const Patch& patch : scene.patches) {
@@ -70,8 +83,7 @@ PlaneSet PlaneSet::fromScene(const Scene& scene, const Tolerance& tol) {
         if (it == buckets.end()) continue;
         for (uint32_t id : it->second) {
           const Plane& rep = set.planes_[id];
-          if (dot(rep.normal, ns) >= 1 - tol.normalCos() &&
-              std::abs(rep.distance(c)) <= tol.planeOffset()) {
+          if (dot(rep.normal, ns) >= mergeCos && withinOffset(rep, patch.polygon)) {
             found = id;
             along = sign > 0;
             break;

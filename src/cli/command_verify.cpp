@@ -54,6 +54,7 @@ Action addVerifyCommand(CLI::App& app) {
                                 {"missing_blockers", v.missingBlockers},
                                 {"offset_only_hits", v.offsetOnlyHits},
                                 {"contact_first_hits", v.contactFirstHits},
+                                {"contact_rays", v.contactRays},
                                 {"invalid_pairs", v.invalidPairs},
                                 {"examples", v.examples},
                                 {"ok", v.ok()}};
@@ -76,6 +77,11 @@ Action addVerifyCommand(CLI::App& app) {
           "unlisted hits of those segments behind a blocker the segment between the sampled "
           "points meets first, within that distance of its end (not violations): {}\n",
           v.contactFirstHits);
+    if (v.contactRays)
+      fmt::print(
+          "rays whose first hit faces their patch from its own plane, within the model tolerance "
+          "(faces in contact; not violations): {}\n",
+          v.contactRays);
     if (v.invalidPairs) fmt::print("pairs naming patches that do not exist: {}\n", v.invalidPairs);
     for (const std::string& e : v.examples) fmt::print("  {}\n", e);
     fmt::print("{}\n", v.ok() ? "OK: no violation" : "FAILED: violations found");

@@ -39,6 +39,10 @@ struct VerifyReport {
   /// the sampled points meets first, closer than kVerifyContactDistance to its end (the offset
   /// segment starts past it): the contract's first hit is that listed one, so not violations.
   uint64_t contactFirstHits = 0;
+  /// Rays from S whose first hit R faces S from S's own plane (within the model tolerance: a
+  /// wall's foot on a floor, both a little out of true): a gap below the scene's resolution, so
+  /// not a sightline of the contract; counted, not violations.
+  uint64_t contactRays = 0;
   uint64_t invalidPairs = 0;          ///< listed pairs with ids out of range
   std::vector<std::string> examples;  ///< the first few violations, described
   bool ok() const { return missingPairs + blockedVisible + missingBlockers + invalidPairs == 0; }
