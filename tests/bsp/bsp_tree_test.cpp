@@ -33,6 +33,30 @@ TEST(BspPlaneSet, MergesCoplanarPatchesEitherFacing) {
   EXPECT_NE(planes.of(4).plane, planes.of(0).plane);
 }
 
+TEST(BspPlaneSet, JitteredPiecesOfOneWallShareItsPlaneButTiltedOrOffsetFacesDoNot) {
+  // A 20 m box (plane offset tolerance 1e-5 x its diagonal, 3.5e-4) with a wall at x = 10 in
+  // three 1 m pieces, the second and third tilted by moving their edges 2e-5 each way (as
+  // rounding leaves them): their normals are 4e-5 rad off (beyond the 1e-5 of the angle
+  // tolerance alone), yet every vertex is within the offset tolerance of the first piece's
+  // plane: one plane. A piece tilted
+  // by 2e-3 rad, and one 1e-3 off the wall, are other planes.
+  SceneMaker m(boxOf({0, 0, 0}, {20, 10, 3}));
+  const double j = 2e-5;
+  m.builder.addQuad({10, 0, 0}, {10, 1, 0}, {10, 1, 1}, {10, 0, 1}, m.grey);
+  m.builder.addQuad({10 + j, 1, 0}, {10 + j, 2, 0}, {10 - j, 2, 1}, {10 - j, 1, 1}, m.grey);
+  m.builder.addQuad({10 - j, 2, 0}, {10 + j, 3, 0}, {10 + j, 3, 1}, {10 - j, 2, 1}, m.grey);
+  m.builder.addQuad({10, 3, 0}, {10, 4, 0}, {10 + 2e-3, 4, 1}, {10 + 2e-3, 3, 1}, m.grey);
+  m.builder.addQuad({10.001, 4, 0}, {10.001, 5, 0}, {10.001, 5, 1}, {10.001, 4, 1}, m.grey);
+  ASSERT_EQ(m.scene.patches.size(), 5u);  // each quad one patch (none triangulated)
+  const size_t first = 0;
+  const PlaneSet planes = PlaneSet::fromScene(m.scene, m.scene.tolerance());
+  const uint32_t wall = planes.of(static_cast<uint32_t>(first)).plane;
+  EXPECT_EQ(planes.of(static_cast<uint32_t>(first + 1)).plane, wall);
+  EXPECT_EQ(planes.of(static_cast<uint32_t>(first + 2)).plane, wall);
+  EXPECT_NE(planes.of(static_cast<uint32_t>(first + 3)).plane, wall);
+  EXPECT_NE(planes.of(static_cast<uint32_t>(first + 4)).plane, wall);
+}
+
 TEST(BspPlaneSet, BoxFacesMakeSixPlanesAndOpposedFacesOfTouchingBoxesShareOne) {
   SceneMaker m(boxOf({0, 0, 0}, {2, 1, 1}));
   m.builder.addBox({0, 0, 0}, {1, 1, 1}, m.grey);

@@ -73,20 +73,31 @@ TEST(VerifyChecks, CleanResultPassesAndEveryViolationKindIsCaught) {
   }
 }
 
+// A scene of grey polygons given by their vertices (fronts counter-clockwise); `size` sets the
+// tolerance the polygons are built with.
+struct GreyScene {
+  Scene scene;
+  uint32_t grey;
+  double size;
+  explicit GreyScene(double size_) : grey(scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}})),
+                                     size(size_) {}
+  void add(const std::vector<Vec3>& v) {
+    Patch p;
+    p.polygon = *ConvexPolygon::fromVertices(v, Tolerance{size});
+    p.material = grey;
+    scene.patches.push_back(p);
+  }
+};
+
 TEST(VerifyChecks, HitsOfTheOffsetSegmentThatTheSegmentItselfMissesAreNotViolations) {
   // Two floor quads facing up, the far one tilted up by 1e-7 (so they face each other at a
   // grazing angle), and a fence standing between them whose bottom edge is 1e-6 above the floor:
   // every segment between the quads passes under the fence (at most ~1e-7 high), so the pair is
   // VISIBLE, but verify's segments start and end kVerifyContactDistance (3e-6 here) above the
   // quads and run into the fence. Those hits are not the contract's and must not be reported.
-  Scene scene;
-  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
-  auto add = [&](std::vector<Vec3> v) {
-    Patch p;
-    p.polygon = *ConvexPolygon::fromVertices(v, Tolerance{4});
-    p.material = m;
-    scene.patches.push_back(p);
-  };
+  GreyScene g(4);
+  Scene& scene = g.scene;
+  auto add = [&](const std::vector<Vec3>& v) { g.add(v); };
   add({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});                    // S, facing up
   add({{2, 0, 0}, {3, 0, 1e-7}, {3, 1, 1e-7}, {2, 1, 0}});              // R, facing up, tilted
   add({{1.5, 0, 1e-6}, {1.5, 1, 1e-6}, {1.5, 1, 0.5}, {1.5, 0, 0.5}});  // the fence, facing -x
@@ -113,17 +124,11 @@ TEST(VerifyChecks, AListedBlockerMetWithinTheContactDistanceIsTheFirstHit) {
   // near half of S (a solid's face resting on S, a little out of line), under verify's contact
   // distance (1e-6 of the diagonal, 1.7e-6 here): the offset segments start past it. B2 lies
   // over B1 at 1e-5 (only segments through B1 reach it), and B3 just under R covers R whole.
-  // Segments from the near half
-  // of S meet B1 first: with B1 and B3 listed that is not a violation, though the offset segment's
-  // first hit (B2) is unlisted; without B1 it is one.
-  Scene scene;
-  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
-  auto add = [&](std::vector<Vec3> v) {
-    Patch p;
-    p.polygon = *ConvexPolygon::fromVertices(v, Tolerance{2});
-    p.material = m;
-    scene.patches.push_back(p);
-  };
+  // Segments from the near half of S meet B1 first: with B1 and B3 listed that is not a
+  // violation, though the offset segment's first hit (B2) is unlisted; without B1 it is one.
+  GreyScene g(2);
+  Scene& scene = g.scene;
+  auto add = [&](const std::vector<Vec3>& v) { g.add(v); };
   add({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});                  // 0: S, facing up
   add({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});                  // 1: R, facing down
   add({{0, 0, 5e-7}, {0, 1, 5e-7}, {0.5, 1, 5e-7}, {0.5, 0, 5e-7}});  // 2: B1, facing down
