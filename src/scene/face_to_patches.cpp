@@ -81,8 +81,11 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
   double diameter = 0;
   for (size_t i = 0; i < v.size(); ++i)
     for (size_t j = i + 1; j < v.size(); ++j) diameter = std::max(diameter, distance(v[i], v[j]));
-  // Zero width: twice the area over the diameter is the face's thickness scale.
-  if (length(n2) / std::max(diameter, tol.length()) <= tol.length()) return result;
+  // Zero width: twice the area over the diameter is the face's thickness scale. A face
+  // narrower than the model tolerance (a sliver left by a T-junction fix, 1e-4 of a short edge
+  // wide) is below the scene's resolution: the BSP would merge the planes around it, and
+  // sightlines from it graze its neighbours' planes at a depth the tolerance does not resolve.
+  if (length(n2) / std::max(diameter, tol.length()) <= tol.planeOffset()) return result;
   const Vec3 normal = normalize(n2);
 
   Vec3 centroid;

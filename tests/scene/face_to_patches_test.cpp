@@ -126,6 +126,18 @@ TEST(FaceToPatches, DegenerateFacesAreDropped) {
   EXPECT_EQ(faceToPatches({{0, 0, 0}, {1, 0, NAN}, {0, 1, 0}}, kTol).outcome, FaceOutcome::Degenerate);
 }
 
+TEST(FaceToPatches, SliversNarrowerThanTheModelToleranceAreDropped) {
+  // Scene size 10: the model tolerance is 1e-4. A triangle 1.5e-5 wide along a 0.7-long edge
+  // (a T-junction fix's sliver) is below it; one 1e-3 wide, and a long thin strip 2e-4 wide,
+  // are kept.
+  EXPECT_EQ(faceToPatches({{0, 0, 0}, {0, 1.5e-5, 0}, {0, 0, 0.7}}, kTol).outcome,
+            FaceOutcome::Degenerate);
+  EXPECT_EQ(faceToPatches({{0, 0, 0}, {0, 1e-3, 0}, {0, 0, 0.7}}, kTol).outcome,
+            FaceOutcome::Convex);
+  EXPECT_EQ(faceToPatches({{0, 0, 0}, {0, 2e-4, 0}, {0, 2e-4, 5}, {0, 0, 5}}, kTol).outcome,
+            FaceOutcome::Convex);
+}
+
 TEST(FaceToPatches, RepeatedVertexInAQuadIsRemoved) {
   const FacePatches r = faceToPatches({{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, kTol);
   ASSERT_EQ(r.outcome, FaceOutcome::Convex);
