@@ -357,7 +357,11 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       }
     }
   }
-  std::vector<CellSet> portalVis(np, CellSet(cells)), portalFound(np, CellSet(cells));
+  // What each search found; without settled cells that is portalVis itself (not kept twice:
+  // `vis` runs this on cell graphs whose sets take hundreds of MiB).
+  std::vector<CellSet> portalVis(np, CellSet(cells));
+  std::vector<CellSet> portalFound(options.bothSides ? 0 : np, CellSet(cells));
+  const std::vector<CellSet>& found = options.bothSides ? portalVis : portalFound;
   const SearchInputs inputs{g, flood, portalVis, rank, cellDoneAt};
   const size_t threads =
       options.parallel ? static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))
@@ -390,10 +394,14 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       }
       const int pi = order[k];
       s.searchFrom(pi, usable);
-      portalFound[pi] = s.found;
-      // For the later searches' pruning, the settled cells it might have reached count too.
-      portalVis[pi].assignIntersection(s.frames[1], s.settled);
-      portalVis[pi].unite(s.found);
+      if (options.bothSides) {
+        portalVis[pi] = s.found;
+      } else {
+        portalFound[pi] = s.found;
+        // For the later searches' pruning, the settled cells it might have reached count too.
+        portalVis[pi].assignIntersection(s.frames[1], s.settled);
+        portalVis[pi].unite(s.found);
+      }
       done[k].store(true, std::memory_order_release);
       const size_t n = finished.fetch_add(1, std::memory_order_relaxed) + 1;
       if (callingThread && options.progress) options.progress(reported = n, np);
@@ -436,7 +444,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   std::vector<CellSet> seen(cells, CellSet(cells));
   for (size_t c = 0; c < cells; ++c) {
     seen[c].insert(c);
-    for (int pi : g.outgoing[c]) seen[c].unite(portalFound[pi]);
+    for (int pi : g.outgoing[c]) seen[c].unite(found[pi]);
   }
   result.searchSeconds = secondsSince(t1);
 
