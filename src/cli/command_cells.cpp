@@ -9,6 +9,7 @@
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
+#include "cli/scene_input.h"
 #include "cli/output_files.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
@@ -24,6 +25,7 @@ Action addCellsCommand(CLI::App& app) {
   struct State {
     std::string scene, output;
     BspOptions options;
+    bool keepHidden = false;
     bool json = false;
   };
   auto s = std::make_shared<State>();
@@ -40,8 +42,11 @@ Action addCellsCommand(CLI::App& app) {
                   "Planes scored per cell (largest patch area first)")
       ->check(CLI::Range(1, 1'000'000));
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
+  cmd->add_flag("--keep-hidden", s->keepHidden,
+                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
+                "twins, which are dropped by default (bsp/hidden_faces.h)");
   return [s] {
-    const Scene scene = loadScene(s->scene);
+    const Scene scene = loadPipelineScene(s->scene, {false, s->keepHidden});
     ProgressBar bar("BSP");
     if (bar.enabled()) s->options.progress = [&bar](double f) { bar.update(f); };
     const Subdivision sub = buildSubdivision(scene, s->options);

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/scene_input.h"
 #include "scene/scene_io.h"
 
 namespace gv::cli {
@@ -20,6 +21,9 @@ nlohmann::json infoJson(const std::string& path, const Scene& s) {
           {"triangulated_non_planar", r.triangulatedNonPlanar},
           {"split_at_contacts", r.splitAtContacts},
           {"contact_pieces", r.contactPieces},
+          {"hidden_dropped", r.hiddenDropped},
+          {"coincident_dropped", r.coincidentDropped},
+          {"partly_hidden_kept", r.partlyHiddenKept},
           {"materials", s.materials.size()},
           {"emitters", s.emitterCount()},
           {"bounds_min", {box.lo.x, box.lo.y, box.lo.z}},
@@ -40,6 +44,9 @@ void printInfo(const std::string& path, const Scene& s) {
   fmt::print("contacts     {} patches cut along patches resting on them, into {} pieces\n",
              r.splitAtContacts, r.contactPieces);
   fmt::print("dropped      {} degenerate faces\n", r.droppedDegenerate);
+  fmt::print("hidden       {} patches inside closed solids or covered by same-facing twins "
+             "dropped ({} twins), {} partly hidden kept whole\n",
+             r.hiddenDropped + r.coincidentDropped, r.coincidentDropped, r.partlyHiddenKept);
   fmt::print("materials    {}\n", s.materials.size());
   fmt::print("emitters     {} patches\n", s.emitterCount());
   fmt::print("bounds       ({:g}, {:g}, {:g}) to ({:g}, {:g}, {:g}), size {:g} x {:g} x {:g}\n",
@@ -61,7 +68,7 @@ Action addInfoCommand(CLI::App& app) {
       ->required();
   cmd->add_flag("--json", *json, "Print JSON instead of text");
   return [path, json] {
-    const Scene scene = loadScene(*path);
+    const Scene scene = loadPipelineScene(*path, {});
     if (*json)
       fmt::print("{}\n", infoJson(*path, scene).dump(2));
     else

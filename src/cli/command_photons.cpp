@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
+#include "cli/scene_input.h"
 #include "cli/output_files.h"
 #include "radiosity/photon_comparison.h"
 #include "radiosity/photon_reference.h"
@@ -29,6 +30,7 @@ Action addPhotonsCommand(CLI::App& app) {
     std::string scene, output, compare;
     PhotonOptions options;
     double sigmas = 4, allowance = 0.01;
+    bool keepHidden = false;
     bool json = false, noContactSplit = false;
   };
   auto s = std::make_shared<State>();
@@ -56,10 +58,13 @@ Action addPhotonsCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
+  cmd->add_flag("--keep-hidden", s->keepHidden,
+                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
+                "twins, which are dropped by default (bsp/hidden_faces.h)");
   cmd->add_flag("--no-contact-split", s->noContactSplit,
                 "Keep the patches whole (as `globalvis radiosity --no-contact-split`)");
   return [s] {
-    const Scene scene = loadScene(s->scene, !s->noContactSplit);
+    const Scene scene = loadPipelineScene(s->scene, {!s->noContactSplit, s->keepHidden});
     if (scene.patches.empty()) throw InputError(s->scene, 0, "the scene has no patches");
     // Read the run to compare before the long work, so that a bad directory fails at once.
     std::vector<Rgb> solver;

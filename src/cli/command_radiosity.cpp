@@ -9,6 +9,7 @@
 
 #include "bsp/subdivision.h"
 #include "cli/commands.h"
+#include "cli/scene_input.h"
 #include "cli/output_files.h"
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
@@ -36,7 +37,7 @@ Action addRadiosityCommand(CLI::App& app) {
     bool quiet = false, json = false;
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
-    bool noPictures = false, flat = false, noContactSplit = false;
+    bool noPictures = false, flat = false, noContactSplit = false, keepHidden = false;
     BspOptions bsp;  // blockers mode: the subdivision its visibility graph is computed on
   };
   auto s = std::make_shared<State>();
@@ -79,6 +80,9 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", s->quiet,
                 "No progress on stderr (there is none unless stderr is a terminal)");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
+  cmd->add_flag("--keep-hidden", s->keepHidden,
+                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
+                "twins, which are dropped by default (bsp/hidden_faces.h)");
   cmd->add_option("--camera", s->camera,
                   "Viewpoint of the pictures: ex,ey,ez,tx,ty,tz[,fov] (eye, target, vertical "
                   "field of view in degrees; default: a view into the scene, roof cut away)")
@@ -89,7 +93,7 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s] {
-    const Scene scene = loadScene(s->scene, !s->noContactSplit);
+    const Scene scene = loadPipelineScene(s->scene, {!s->noContactSplit, s->keepHidden});
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     // Progress (a bar per refinement round, a line per round) only on a terminal.
     const bool progress = !s->quiet && stderrIsTerminal();

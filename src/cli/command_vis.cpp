@@ -9,6 +9,7 @@
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
+#include "cli/scene_input.h"
 #include "cli/output_files.h"
 #include "scene/input_error.h"
 #include "scene/scene_io.h"
@@ -27,6 +28,7 @@ Action addVisCommand(CLI::App& app) {
     std::string scene, output;
     BspOptions bsp;
     PropagationOptions propagation;
+    bool keepHidden = false;
     bool json = false, contactSplit = false;
   };
   auto s = std::make_shared<State>();
@@ -43,12 +45,15 @@ Action addVisCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
+  cmd->add_flag("--keep-hidden", s->keepHidden,
+                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
+                "twins, which are dropped by default (bsp/hidden_faces.h)");
   cmd->add_flag("--contact-split", s->contactSplit,
                 "Cut patches along the outlines of the patches resting on them first, as "
                 "`radiosity` does (scene/contact_split.h): more patches, much shorter blocker "
                 "lists, and the same patches as a radiosity run");
   return [s] {
-    const Scene scene = loadScene(s->scene, s->contactSplit);
+    const Scene scene = loadPipelineScene(s->scene, {s->contactSplit, s->keepHidden});
     for (const std::string& w : scene.report.warnings) fmt::print(stderr, "warning: {}\n", w);
     ProgressBar bspBar("BSP");
     if (bspBar.enabled()) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };

@@ -43,6 +43,10 @@ struct ImportReport {
   size_t triangulatedNonPlanar = 0;  ///< faces beyond the planarity tolerance, triangulated
   size_t splitAtContacts = 0;  ///< patches cut along the outlines of patches resting on them
   size_t contactPieces = 0;    ///< the pieces those patches became (scene/contact_split.h)
+  /// Faces no air reaches and coincident twins (bsp/hidden_faces.h), when that pass ran.
+  size_t hiddenDropped = 0;      ///< patches whose front looks only into closed solids
+  size_t coincidentDropped = 0;  ///< same-facing twins wholly covered by earlier patches
+  size_t partlyHiddenKept = 0;   ///< patches only partly hidden or covered, kept whole
   std::vector<std::string> warnings;
 };
 

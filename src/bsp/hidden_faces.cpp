@@ -1,0 +1,201 @@
+// Hidden faces and coincident twins, decided on the all-planes BSP (see hidden_faces.h).
+//
+// Why the cells decide: with every patch plane split on (minCoverage 0), every patch fragment
+// lies on cell boundaries, so no patch crosses a cell's inside and the winding number, which
+// jumps only across patches, is the same at every point of one cell. A fragment's front looks
+// into exactly one cell; it is hidden when that cell is inside a solid. Light and sightlines
+// from air never enter a solid's cell (they would cross the solid's own faces first), so what is
+// removed is what the outside checks' photons and rays can never reach.
+#include "bsp/hidden_faces.h"
+
+#include <oneapi/tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "bsp/coplanar_clip.h"
+#include "bsp/subdivision.h"
+#include "util/timing.h"
+
+namespace gv {
+namespace {
+
+/// Signed solid angle of triangle (a, b, c) seen from the origin (Van Oosterom & Strackee 1983):
+/// positive when a · (b × c) > 0, i.e. the triangle runs clockwise seen from the origin.
+double solidAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = length(a), lb = length(b), lc = length(c);
+  const double det = dot(a, cross(b, c));
+  const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
+  return 2 * std::atan2(det, den);
+}
+
+/// The fragment `p` clipped to the cell, without the cell's halfspaces that `p` lies on (those
+/// would cut a patch lying on the cell's boundary at rounding depth).
+std::optional<ConvexPolygon> pieceInCell(const ConvexPolygon& p, const ConvexPolyhedron& cell,
+                                         const Tolerance& tol) {
+  std::optional<ConvexPolygon> cur = p;
+  for (const Plane& h : cell.halfspaces) {
+    bool lies = true;
+    for (const Vec3& v : cur->vertices)
+      if (std::abs(h.distance(v)) > tol.planeOffset()) lies = false;
+    if (lies) continue;
+    cur = clipToFront(*cur, h.flipped(), tol);
+    if (!cur) return std::nullopt;
+  }
+  return cur;
+}
+
+double diameterOf(const ConvexPolygon& p) {
+  double d = 0;
+  for (size_t i = 0; i < p.vertices.size(); ++i)
+    for (size_t j = i + 1; j < p.vertices.size(); ++j)
+      d = std::max(d, distance(p.vertices[i], p.vertices[j]));
+  return d;
+}
+
+/// The importers' sliver rule (face_to_patches.cpp): a piece narrower than the model tolerance
+/// would not come back from patches.obj as a patch.
+bool isUsable(const ConvexPolygon& p, const Tolerance& tol) {
+  return 2 * p.area() / std::max(diameterOf(p), tol.length()) > tol.planeOffset();
+}
+
+/// A patch's fragment whose front looks into one cell.
+struct Piece {
+  uint32_t patch = 0;
+  uint32_t cell = 0;
+  ConvexPolygon polygon;
+};
+
+}  // namespace
+
+double windingNumber(const Scene& scene, const Vec3& p) {
+  double sum = 0;
+  for (const Patch& patch : scene.patches) {
+    const auto& v = patch.polygon.vertices;
+    const Vec3 a = v[0] - p;
+    for (size_t i = 1; i + 1 < v.size(); ++i) sum += solidAngle(a, v[i] - p, v[i + 1] - p);
+  }
+  // Counter-clockwise seen from the front = outward: from a point inside, each face's triangle
+  // (vertices minus p) has a positive triple product, and a closed solid adds up to 4 pi.
+  return sum / (4 * std::numbers::pi);
+}
+
+Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
+                        HiddenFaceReport* report) {
+  const auto start = Clock::now();
+  HiddenFaceReport rep;
+  if (scene.patches.empty()) {
+    if (report) *report = rep;
+    return scene;
+  }
+  BspOptions bsp;
+  bsp.minCoverage = 0;  // every plane: no patch crosses a cell, so each cell is in or out
+  const Subdivision sub = buildSubdivision(scene, bsp);
+  const Tolerance tol = sub.tree.tol;
+  const size_t nCells = sub.cells.size();
+  rep.cells = nCells;
+
+  // The pieces whose front looks into each cell; a patch left inside a cell (a plane that only
+  // grazed it) is kept whole: it is not decided here.
+  std::vector<std::vector<Piece>> pieces(nCells);
+  std::vector<uint8_t> undecided(scene.patches.size(), 0);
+  tbb::parallel_for(size_t{0}, nCells, [&](size_t c) {
+    const Cell& cell = sub.cells[c];
+    const Vec3 inside = cell.shape.centroid();
+    for (uint32_t p : cell.patches) {
+      if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p)) {
+        undecided[p] = 1;  // benign race: every writer writes 1
+        continue;
+      }
+      const ConvexPolygon& poly = scene.patches[p].polygon;
+      if (poly.plane.distance(inside) <= 0) continue;  // faces out of this cell
+      if (auto piece = pieceInCell(poly, cell.shape, tol))
+        pieces[c].push_back({p, static_cast<uint32_t>(c), std::move(*piece)});
+    }
+  });
+
+  // Solid cells: only those some piece looks into matter.
+  std::vector<uint8_t> solid(nCells, 0);
+  tbb::parallel_for(size_t{0}, nCells, [&](size_t c) {
+    if (pieces[c].empty()) return;
+    solid[c] = windingNumber(scene, sub.cells[c].shape.centroid()) >= kSolidWindingNumber;
+  });
+  for (uint8_t s : solid) rep.solidCells += s;
+
+  // Per patch: its pieces in air, after the earlier same-facing patches on its plane in the same
+  // cell took their overlap. `cut` marks a patch that lost anything.
+  std::vector<std::vector<ConvexPolygon>> kept(scene.patches.size());
+  std::vector<uint8_t> cutByHiding(scene.patches.size(), 0), cutByTwin(scene.patches.size(), 0);
+  std::vector<uint8_t> hasPiece(scene.patches.size(), 0);
+  for (size_t c = 0; c < nCells; ++c) {
+    std::vector<Piece>& here = pieces[c];
+    std::sort(here.begin(), here.end(),
+              [](const Piece& a, const Piece& b) { return a.patch < b.patch; });
+    std::vector<const Piece*> earlier;  // the air pieces of this cell so far
+    for (const Piece& piece : here) {
+      hasPiece[piece.patch] = 1;
+      if (solid[c]) {
+        cutByHiding[piece.patch] = 1;
+        continue;
+      }
+      const PatchPlane& pp = sub.tree.planes.of(piece.patch);
+      std::vector<ConvexPolygon> rest{piece.polygon}, next;
+      for (const Piece* e : earlier) {
+        const PatchPlane& ep = sub.tree.planes.of(e->patch);
+        if (ep.plane != pp.plane || ep.facesAlong != pp.facesAlong) continue;
+        next.clear();
+        for (ConvexPolygon& r : rest) {
+          // Only a real overlap cuts: subtracting a neighbour that merely shares an edge would
+          // still split `r` along the extensions of the neighbour's other edges.
+          if (!intersectCoplanar(r, e->polygon, tol)) {
+            next.push_back(std::move(r));
+            continue;
+          }
+          subtractCoplanar(r, e->polygon, tol, next);
+          cutByTwin[piece.patch] = 1;
+        }
+        std::swap(rest, next);
+        if (rest.empty()) break;
+      }
+      for (ConvexPolygon& r : rest) kept[piece.patch].push_back(std::move(r));
+      earlier.push_back(&piece);
+    }
+  }
+
+  Scene out;
+  out.materials = scene.materials;
+  out.report = scene.report;
+  for (uint32_t p = 0; p < scene.patches.size(); ++p) {
+    const Patch& patch = scene.patches[p];
+    const bool cut = cutByHiding[p] || cutByTwin[p];
+    if (undecided[p] || !hasPiece[p] || !cut) {
+      out.patches.push_back(patch);
+      continue;
+    }
+    std::erase_if(kept[p], [&](const ConvexPolygon& piece) { return !isUsable(piece, tol); });
+    if (kept[p].empty()) {
+      ++(cutByTwin[p] && !cutByHiding[p] ? rep.coincident : rep.hidden);
+    } else if (!options.cutPartly) {
+      // Kept whole: its hidden part is unreachable by light and rays alike, so it only lowers
+      // the patch's mean the same way for the solver and a tracer on patches.obj, and cutting
+      // along the all-planes BSP would shatter it into many pieces.
+      out.patches.push_back(patch);
+      ++rep.partlyKept;
+    } else {
+      ++(cutByHiding[p] ? rep.partlyHidden : rep.partlyCoincident);
+      for (ConvexPolygon& piece : kept[p]) {
+        out.patches.push_back({std::move(piece), patch.material, patch.sourceFace});
+        ++rep.piecesOut;
+      }
+    }
+  }
+  rep.secondsTaken = secondsSince(start);
+  if (report) *report = rep;
+  return out;
+}
+
+}  // namespace gv

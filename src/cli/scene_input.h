@@ -1,0 +1,20 @@
+// The scene every pipeline command reads: the file's patches (scene/scene_io.h), without the
+// faces no air reaches and coincident twins (bsp/hidden_faces.h), then, for radiosity, cut at
+// contacts (scene/contact_split.h).
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace gv::cli {
+
+struct SceneInputOptions {
+  bool contactSplit = false;  ///< radiosity and photons: cut patches at contacts
+  bool keepHidden = false;    ///< keep faces inside closed solids and coincident twins
+};
+
+/// Loads `path` and prepares it as `options` say; the import report counts every step.
+Scene loadPipelineScene(const std::string& path, const SceneInputOptions& options);
+
+}  // namespace gv::cli
