@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "scene/scene_io.h"
+#include "input/load_scene.h"
 
 namespace gv::cli {
 namespace {

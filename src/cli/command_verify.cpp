@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 #include "visibility/verify.h"
 
 namespace gv::cli {

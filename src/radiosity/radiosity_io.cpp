@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "radiosity/element_mesh.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -5,8 +5,8 @@
 #include <optional>
 
 #include "report/piece_radiosity.h"
-#include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 #include "visibility/visibility_graph.h"
 
 namespace gv {
