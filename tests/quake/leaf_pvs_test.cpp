@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "geometry/tolerance.h"
+#include "support/oracle_math.h"
 #include "visibility/portal_clipping.h"
 
 namespace gv {
@@ -190,15 +191,7 @@ struct Walker {
   }
 };
 
-Vec3 randomPointIn(std::mt19937_64& rng, const std::vector<Vec3>& w) {
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<double> wts(w.size());
-  double sum = 0;
-  for (double& x : wts) x = -std::log(u(rng) + 1e-300), sum += x;
-  Vec3 p{};
-  for (size_t i = 0; i < w.size(); ++i) p += w[i] * (wts[i] / sum);
-  return p;
-}
+using test::randomPointIn;
 
 // Every pair of cells one ray passes through must be in the PVS (checked on the first leaf of each
 // cluster; rows are per cluster). Returns the number of distinct pairs checked.
