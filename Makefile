@@ -51,13 +51,19 @@ BENCH_ARGS ?=
 bench-scenes: build
 	@./$(BUILD)/globalvis bench $(BENCH_ARGS) --update-docs docs/BENCHMARKS.md
 
-# libFuzzer on the OBJ importer (clang + libclang-rt-14-dev); corpus grows in build-fuzz/corpus.
+# libFuzzer on the input readers (clang + libclang-rt-14-dev): the OBJ importer, the Quake .prt
+# reader and the .map parser, FUZZ_SECONDS each; FUZZ_TARGET=prt_file_fuzz (say) runs one. Seeds
+# in fuzz/corpus/<obj|prt|map>/; each corpus grows in build-fuzz/corpus/<target>/.
+FUZZ_TARGET ?= obj_import_fuzz prt_file_fuzz map_file_fuzz
 fuzz: deps
 	@./scripts/ensure-packages.sh clang libclang-rt-14-dev
 	@cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGV_FUZZ=ON > build-fuzz.configure.log || (cat build-fuzz.configure.log; exit 1)
-	@cmake --build build-fuzz -j $(JOBS) --target obj_import_fuzz
-	@mkdir -p build-fuzz/corpus && cp -n fuzz/corpus/* build-fuzz/corpus/
-	@./build-fuzz/obj_import_fuzz -max_total_time=$(FUZZ_SECONDS) -max_len=4096 build-fuzz/corpus
+	@cmake --build build-fuzz -j $(JOBS) --target $(FUZZ_TARGET)
+	@for t in $(FUZZ_TARGET); do \
+	  seeds=fuzz/corpus/$${t%%_*}; \
+	  mkdir -p build-fuzz/corpus/$$t && { cp -n $$seeds/* build-fuzz/corpus/$$t/ || true; } && \
+	  ./build-fuzz/$$t -max_total_time=$(FUZZ_SECONDS) -max_len=4096 build-fuzz/corpus/$$t || exit 1; \
+	done
 
 format:
 	@clang-format -i $$(git ls-files '*.cpp' '*.h')

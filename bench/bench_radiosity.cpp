@@ -6,8 +6,6 @@
 // scene outside the timing).
 #include <benchmark/benchmark.h>
 
-#include "radiosity_checks.h"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -19,6 +17,7 @@
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/radiosity_checks.h"
 #include "radiosity/photon_reference.h"
 #include "radiosity/ray_visibility.h"
 #include "radiosity/shaft_visibility.h"
@@ -27,8 +26,12 @@
 namespace gv {
 namespace {
 
-using bench::checkRadiosity;
-using bench::radiosityHash;
+/// The shared checks (radiosity/radiosity_checks.h) with the two that hold for these closed
+/// scenes run to the end: convergence and the energy bound. Throws on the first problem.
+void checkSolution(const Scene& scene, const RadiosityResult& r) {
+  if (auto problem = checkRadiosity(scene, r, {.converged = true, .energyBound = true}))
+    throw std::runtime_error(*problem);
+}
 
 /// Relative error (per channel) of the solver against the photon reference over the patch
 /// channels whose photon estimate is good to 1 %.
@@ -83,7 +86,7 @@ void run(benchmark::State& state, const std::string& key, const Scene& scene, do
     last = solveRadiosity(scene, *visibility, options);
     benchmark::DoNotOptimize(last.patchRadiosity.data());
   }
-  checkRadiosity(scene, last);
+  checkSolution(scene, last);
   const RadiosityStats& s = last.stats;
   state.counters["patches"] = static_cast<double>(s.patches);
   state.counters["links"] = static_cast<double>(s.rounds.back().links.total());

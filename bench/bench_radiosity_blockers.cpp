@@ -5,8 +5,6 @@
 // reports a hash of the per-patch radiosity.
 #include <benchmark/benchmark.h>
 
-#include "radiosity_checks.h"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -16,14 +14,19 @@
 #include "generators/office.h"
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/radiosity_checks.h"
 #include "util/timing.h"
 #include "visibility/propagation.h"
 
 namespace gv {
 namespace {
 
-using bench::checkRadiosity;
-using bench::radiosityHash;
+/// The shared checks (radiosity/radiosity_checks.h) with the two that hold for these closed
+/// scenes run to the end: convergence and the energy bound. Throws on the first problem.
+void checkSolution(const Scene& scene, const RadiosityResult& r) {
+  if (auto problem = checkRadiosity(scene, r, {.converged = true, .energyBound = true}))
+    throw std::runtime_error(*problem);
+}
 
 void run(benchmark::State& state, const Scene& scene, double minCoverage, bool resolvePunts) {
   BspOptions bsp;
@@ -42,7 +45,7 @@ void run(benchmark::State& state, const Scene& scene, double minCoverage, bool r
     totals = visibility.stats().total();
     benchmark::DoNotOptimize(last.patchRadiosity.data());
   }
-  checkRadiosity(scene, last);
+  checkSolution(scene, last);
   const RadiosityStats& s = last.stats;
   state.counters["graph_seconds"] = graphSeconds;
   state.counters["links"] = static_cast<double>(s.rounds.back().links.total());

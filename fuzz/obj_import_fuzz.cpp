@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -11,6 +11,7 @@
 #include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
 #include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/radiosity_checks.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
 #include "util/fnv_hash.h"
@@ -97,26 +98,6 @@ std::string visibilityHash(const VisibilityGraph& g) {
     for (uint32_t b : in.blockers) h.integer(b);
   }
   return h.hex();
-}
-
-/// Radiosity is a sum of floating-point terms: hashed at 6 significant digits, so the hash
-/// shows a changed answer, not a changed summation order.
-std::string radiosityHash(const RadiosityResult& r) {
-  Fnv1a h;
-  for (const Rgb& c : r.patchRadiosity) h.text(fmt::format("{:.5e} {:.5e} {:.5e};", c.r, c.g, c.b));
-  return h.hex();
-}
-
-std::optional<std::string> checkRadiosity(const Scene& scene, const RadiosityResult& r) {
-  if (r.patchRadiosity.size() != scene.patches.size()) return "radiosity per patch missing";
-  for (size_t k = 0; k < scene.patches.size(); ++k) {
-    const Rgb& b = r.patchRadiosity[k];
-    const Rgb& e = scene.materials.at(scene.patches[k].material).emission;
-    for (auto [value, emitted] : {std::pair{b.r, e.r}, {b.g, e.g}, {b.b, e.b}})
-      if (!std::isfinite(value) || value < emitted * (1 - 1e-9))
-        return fmt::format("patch {} radiosity {} below its emission {}", k, value, emitted);
-  }
-  return std::nullopt;
 }
 
 void record(BenchRow& row, const std::string& check, const std::optional<std::string>& error) {
@@ -243,7 +224,7 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     row.radiositySeconds = secondsSince(t0);
     record(row, "radiosity", checkRadiosity(scene, result));
     row.radiosityLinks = result.stats.rounds.empty() ? 0 : result.stats.rounds.back().links.total();
-    row.radiosityHash = radiosityHash(result);
+    row.radiosityHash = fmt::format("{:016x}", radiosityHash(result));
   } catch (const BudgetExceeded&) {
     row.notes.push_back(overBudget("radiosity", budget));
   }

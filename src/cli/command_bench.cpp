@@ -15,7 +15,7 @@
 #include "cli/output_files.h"
 #include "generators/office.h"
 #include "quake/map_to_scene.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 #include "util/marked_section.h"
 
 namespace gv::cli {

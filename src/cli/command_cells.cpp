@@ -11,8 +11,8 @@
 #include "cli/commands.h"
 #include "cli/scene_input.h"
 #include "cli/output_files.h"
-#include "scene/input_error.h"
-#include "scene/scene_io.h"
+#include "input/load_scene.h"
+#include "util/input_error.h"
 #include "util/progress_bar.h"
 
 namespace gv::cli {

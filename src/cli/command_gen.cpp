@@ -9,8 +9,8 @@
 #include "generators/generators.h"
 #include "generators/maze.h"
 #include "generators/office.h"
-#include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 #include "util/timing.h"
 
 namespace gv::cli {

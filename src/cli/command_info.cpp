@@ -5,7 +5,6 @@
 
 #include "cli/commands.h"
 #include "cli/scene_input.h"
-#include "scene/scene_io.h"
 
 namespace gv::cli {
 namespace {

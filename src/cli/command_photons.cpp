@@ -9,13 +9,14 @@
 #include "cli/commands.h"
 #include "cli/scene_input.h"
 #include "cli/output_files.h"
+#include "input/load_scene.h"
 #include "radiosity/photon_comparison.h"
 #include "radiosity/photon_reference.h"
 #include "radiosity/radiosity_io.h"
 #include "raycast/embree_scene.h"
 #include "report/run_files.h"
-#include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 #include "util/timing.h"
 
 namespace gv::cli {

@@ -11,7 +11,7 @@
 #include "cli/commands.h"
 #include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 #include "util/progress_bar.h"
 #include "util/timing.h"
 

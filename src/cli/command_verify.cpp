@@ -7,8 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "scene/input_error.h"
-#include "scene/scene_io.h"
+#include "scene/patches_obj.h"
 #include "visibility/verify.h"
 
 namespace gv::cli {
@@ -35,12 +34,7 @@ Action addVerifyCommand(CLI::App& app) {
   return [s] {
     const std::filesystem::path dir(s->dir);
     const std::string objPath = (dir / "patches.obj").string();
-    const Scene scene = importObj(objPath);
-    const ImportReport& r = scene.report;
-    if (r.droppedDegenerate || r.splitNonConvex || r.triangulatedNonPlanar)
-      throw InputError(objPath, 0,
-                       "not a patch file written by `globalvis vis` (its faces are not "
-                       "all convex planar patches, so face k would not be patch k)");
+    const Scene scene = importPatchesObj(objPath, "`globalvis vis`");
     const VisibilityGraph graph = readVisibilityTxt((dir / "visibility.txt").string());
     const VerifyReport v = verifyVisibility(scene, graph, s->options);
     if (s->json) {

@@ -14,7 +14,7 @@
 #include "report/html_page.h"
 #include "report/run_files.h"
 #include "report/viewer_data.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv::cli {
 namespace {

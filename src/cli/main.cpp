@@ -6,7 +6,7 @@
 #include <map>
 
 #include "cli/commands.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{

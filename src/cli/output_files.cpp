@@ -3,7 +3,7 @@
 
 #include <fstream>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv::cli {
 

@@ -2,7 +2,7 @@
 
 #include "bsp/hidden_faces.h"
 #include "scene/contact_split.h"
-#include "scene/scene_io.h"
+#include "input/load_scene.h"
 
 namespace gv::cli {
 namespace {

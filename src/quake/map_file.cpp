@@ -7,8 +7,8 @@
 #include <cmath>
 #include <optional>
 
-#include "scene/input_error.h"
 #include "scene/read_file.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

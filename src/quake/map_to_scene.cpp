@@ -34,7 +34,7 @@
 #include <tuple>
 
 #include "quake/brush_csg.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string_view>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

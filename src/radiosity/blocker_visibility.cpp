@@ -9,6 +9,7 @@
 #include "linespace/contact_blockers.h"
 #include "linespace/segment_blocking.h"
 #include "radiosity/link_sampling.h"
+#include "util/check.h"
 
 namespace gv {
 namespace {
@@ -77,8 +78,7 @@ void BlockerVisibility::forEachCandidatePair(
 
 VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& b,
                                                TubeId parentTube, uint64_t seed) {
-  if (parentTube >= tubes_.size())
-    throw std::logic_error("blockers mode: a link without a tube from this oracle");
+  CHECK_MSG(parentTube < tubes_.size(), "blockers mode: a link without a tube from this oracle");
   LevelStats& level = stats_.level(a.depth + b.depth);
   VisibilityEstimate e;
   if (parentTube == kVisibleTube) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "util/check.h"
+
 namespace gv {
 namespace {
 
@@ -19,6 +21,7 @@ ConvexPolygon piece(std::vector<Vec3> vertices, const Plane& plane) {
 std::vector<ConvexPolygon> splitElementPolygon(const ConvexPolygon& polygon) {
   const std::vector<Vec3>& v = polygon.vertices;
   const Plane& plane = polygon.plane;
+  CHECK_MSG(v.size() >= 3, "an element with {} vertices", v.size());
   std::vector<ConvexPolygon> out;
   if (v.size() == 3) {
     const Vec3 m01 = (v[0] + v[1]) * 0.5, m12 = (v[1] + v[2]) * 0.5, m20 = (v[2] + v[0]) * 0.5;

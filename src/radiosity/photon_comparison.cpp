@@ -3,10 +3,16 @@
 
 #include <cmath>
 
+#include "util/check.h"
+
 namespace gv {
 
 PhotonComparison comparePhotons(const Scene& scene, const std::vector<Rgb>& solver,
                                 const PhotonResult& reference, double sigmas, double allowance) {
+  CHECK_MSG(reference.radiosity.size() >= scene.patches.size() &&
+                reference.standardError.size() >= scene.patches.size(),
+            "photon reference of {} patches for a scene of {}", reference.radiosity.size(),
+            scene.patches.size());
   PhotonComparison c;
   double sumSq = 0, areaSum = 0;
   for (size_t p = 0; p < scene.patches.size() && p < solver.size(); ++p) {

@@ -8,7 +8,8 @@
 #include <cmath>
 
 #include "radiosity/element_mesh.h"
-#include "scene/input_error.h"
+#include "util/check.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {
@@ -104,6 +105,8 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
 
 void writeElementsPly(const RadiosityResult& result, const std::string& path, double white) {
   const ElementTree& tree = result.elements;
+  CHECK_MSG(result.elementRadiosity.size() == tree.size(), "{} element values for {} elements",
+            result.elementRadiosity.size(), tree.size());
   if (!(white > 0)) {
     std::vector<std::pair<double, double>> byValue;  // (radiosity, area) of leaves
     double area = 0;

@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 

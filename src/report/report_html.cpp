@@ -12,7 +12,7 @@
 #include "report/fig13_chart.h"
 #include "report/html_page.h"
 #include "report/run_files.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -5,8 +5,9 @@
 #include <optional>
 
 #include "report/piece_radiosity.h"
-#include "scene/input_error.h"
+#include "scene/patches_obj.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 #include "visibility/visibility_graph.h"
 
 namespace gv {
@@ -55,12 +56,7 @@ json viewerDataJson(const RunFiles& files, const std::string& title,
                      "no patches.obj here or in vis/ or radiosity/ (run `globalvis vis` or "
                      "`globalvis radiosity` with -o into this directory first)");
   const std::string patchesPath = files.patchesObj.string();
-  const Scene scene = importObj(patchesPath);
-  const ImportReport& report = scene.report;
-  if (report.droppedDegenerate || report.splitNonConvex || report.triangulatedNonPlanar)
-    throw InputError(patchesPath, 0,
-                     "not a patch file written by globalvis (its faces are not "
-                     "all convex planar patches, so face k would not be patch k)");
+  const Scene scene = importPatchesObj(patchesPath, "globalvis");
   const Aabb bounds = scene.bounds();
   const Rounder round(kRelativeCoordinateQuantum * bounds.diagonal());
 

@@ -10,9 +10,9 @@
 #include <filesystem>
 
 #include "scene/face_to_patches.h"
-#include "scene/input_error.h"
 #include "scene/read_file.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

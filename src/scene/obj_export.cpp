@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <set>
 
-#include "scene/input_error.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

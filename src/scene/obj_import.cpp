@@ -7,13 +7,11 @@
 #include <set>
 #include <sstream>
 
-#include "quake/map_to_scene.h"
-#include "scene/contact_split.h"
 #include "scene/face_to_patches.h"
-#include "scene/input_error.h"
 #include "scene/obj_precheck.h"
 #include "scene/read_file.h"
 #include "scene/scene_io.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace fs = std::filesystem;
@@ -134,24 +132,6 @@ Scene importObjText(const std::string& path, const std::string& text) {
                      report.facesIn == 0 ? "the scene has no faces"
                                          : "the scene has no usable face (all " +
                                                std::to_string(report.facesIn) + " are degenerate)");
-  return scene;
-}
-
-Scene loadScene(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".obj") return importObj(path);
-  if (ext == ".map") return importMap(path);
-  if (!ext.empty() && assimpReadsExtension(ext)) return importWithAssimp(path);
-  throw InputError(path, 0,
-                   "unsupported scene format '" + ext +
-                       "' (supported: .obj, .map, and the mesh formats Assimp reads: "
-                       ".ply, .gltf, .glb, ...)");
-}
-
-Scene loadScene(const std::string& path, bool contactSplit) {
-  Scene scene = loadScene(path);
-  if (contactSplit) splitPatchesAtContacts(scene);
   return scene;
 }
 

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 

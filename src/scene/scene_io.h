@@ -1,4 +1,5 @@
-// Reading and writing scenes: Wavefront OBJ + MTL (Kd = reflectance, Ke = emission).
+// Reading and writing scenes: Wavefront OBJ + MTL (Kd = reflectance, Ke = emission) and the mesh
+// formats Assimp reads. Choosing among the importers by extension is input/load_scene.h's job.
 #pragma once
 
 #include <string>
@@ -6,17 +7,6 @@
 #include "scene/scene.h"
 
 namespace gv {
-
-/// Loads a scene file, choosing the reader by extension: .obj (importObj), .map (Quake level
-/// source, quake/map_to_scene.h: importMap), anything else Assimp reads (importWithAssimp). Faces become convex patches by
-/// the rules of face_to_patches.h; `Scene::report` tells what happened to them. Throws InputError
-/// (naming file and line) on unreadable or malformed input, non-finite coordinates, bad indices,
-/// faces with fewer than 3 vertices, or a scene with no usable face.
-Scene loadScene(const std::string& path);
-
-/// loadScene, then, when `contactSplit`, splitPatchesAtContacts (scene/contact_split.h): what
-/// `radiosity` and `photons` read by default and `vis --contact-split`.
-Scene loadScene(const std::string& path, bool contactSplit);
 
 /// Reads Wavefront OBJ with its MTL libraries (looked up beside the OBJ). A missing MTL gives a
 /// warning and grey 0.5 without emission; a present but unreadable or malformed MTL is an error.

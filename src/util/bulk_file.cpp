@@ -10,7 +10,7 @@
 #include <cstring>
 #include <new>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 

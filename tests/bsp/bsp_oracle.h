@@ -16,25 +16,19 @@
 #include "bsp/subdivision.h"
 #include "generators/scene_builder.h"
 #include "scene/scene.h"
+#include "support/oracle_math.h"
 
 namespace gv::bsptest {
 
-inline double uniform(std::mt19937& rng, double lo, double hi) {
-  return lo + (hi - lo) * (static_cast<double>(rng()) * 0x1p-32);
-}
+using test::uniform;
 
-/// Unit normal of a polygon from its first non-degenerate fan triangle sum (Newell).
+/// Unit normal of a polygon from its fan triangle sum (Newell).
 inline Vec3 normalOf(const std::vector<Vec3>& v) {
-  Vec3 n;
-  for (size_t i = 1; i + 1 < v.size(); ++i) n += cross(v[i] - v[0], v[i + 1] - v[0]);
+  const Vec3 n = test::vectorArea2(v);
   return n / length(n);
 }
 
-inline double areaOf(const std::vector<Vec3>& v) {
-  Vec3 n;
-  for (size_t i = 1; i + 1 < v.size(); ++i) n += cross(v[i] - v[0], v[i + 1] - v[0]);
-  return 0.5 * length(n);
-}
+inline double areaOf(const std::vector<Vec3>& v) { return 0.5 * length(test::vectorArea2(v)); }
 
 /// Smallest signed distance from p (projected into the polygon's plane) to the polygon's edges,
 /// positive inside. The polygon is convex, either orientation.

@@ -12,7 +12,7 @@
 
 #include "generators/scene_builder.h"
 #include "raycast/embree_scene.h"
-#include "scene/scene_io.h"
+#include "input/load_scene.h"
 
 namespace gv {
 namespace {

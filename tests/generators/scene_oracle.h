@@ -1,5 +1,6 @@
 // Independent checks for generated scenes: polygon validity, divergence-theorem volume, and
-// brute-force segment casting. Written from scratch for the tests; shares no code with src/.
+// brute-force segment casting. Written from scratch for the tests; shares no code with src/
+// (the arithmetic helpers are tests/support/oracle_math.h).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -10,20 +11,12 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "support/oracle_math.h"
 
 namespace gv::testing {
 
-/// Uniform double in [lo, hi) from a raw mt19937 draw (portable).
-inline double uniform(std::mt19937& rng, double lo, double hi) {
-  return lo + (hi - lo) * (static_cast<double>(rng()) * 0x1p-32);
-}
-
-/// Twice the vector area of a polygon (Newell-style sum over the fan from vertex 0).
-inline Vec3 vectorArea2(const std::vector<Vec3>& v) {
-  Vec3 sum;
-  for (size_t i = 1; i + 1 < v.size(); ++i) sum += cross(v[i] - v[0], v[i + 1] - v[0]);
-  return sum;
-}
+using test::uniform;
+using test::vectorArea2;
 
 /// Checks one patch: >= 3 finite vertices, positive area, planar, strictly convex, normal unit
 /// and on the counter-clockwise side. `scale` is the scene size for relative tolerances.

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "quake/map_to_scene.h"
-#include "scene/input_error.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -10,12 +10,12 @@
 #include <optional>
 #include <random>
 
+#include "input/load_scene.h"
 #include "quake/brush_csg.h"
 #include "quake/map_text.h"
-#include "scene/input_error.h"
-#include "scene/scene_io.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "scene/input_error.h"
+#include "util/input_error.h"
 #include "visibility/portal_clipping.h"
 
 namespace gv {

@@ -11,8 +11,8 @@
 #include "render/png_image.h"
 #include "render/segment_drawing.h"
 #include "render/tone_map.h"
-#include "scene/input_error.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -8,8 +8,8 @@
 
 #include "report/run_files.h"
 #include "report/run_fixture.h"
-#include "scene/input_error.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -4,9 +4,9 @@
 
 #include <cstring>
 
-#include "scene/input_error.h"
-#include "scene/scene_io.h"
+#include "input/load_scene.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -4,9 +4,10 @@
 
 #include <random>
 
-#include "scene/input_error.h"
+#include "input/load_scene.h"
 #include "scene/scene_io.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

@@ -10,8 +10,8 @@
 #include <random>
 #include <sstream>
 
-#include "scene/input_error.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 
 namespace gv {
 namespace {

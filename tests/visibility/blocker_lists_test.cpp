@@ -13,10 +13,11 @@
 #include "bsp/subdivision.h"
 #include "generators/maze.h"
 #include "generators/office.h"
-#include "scene/input_error.h"
+#include "input/load_scene.h"
 #include "scene/scene_io.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
+#include "util/input_error.h"
 #include "visibility/propagation.h"
 #include "visibility/visibility_graph.h"
 

@@ -8,6 +8,7 @@
 
 #include "bsp/subdivision.h"
 #include "generators/office.h"
+#include "input/load_scene.h"
 #include "scene/scene_io.h"
 #include "support/temp_dir.h"
 #include "visibility/propagation.h"

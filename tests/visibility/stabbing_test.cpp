@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 
+#include "support/oracle_math.h"
 #include "visibility/linear_program.h"
 #include "visibility/portal_clipping.h"
 
@@ -240,15 +241,7 @@ bool lineStabs(const Vec3& p, const Vec3& d, const std::vector<Winding>& seq) {
   return true;
 }
 
-Vec3 randomPointIn(std::mt19937_64& rng, const Winding& w) {
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<double> wts(w.size());
-  double sum = 0;
-  for (double& x : wts) x = -std::log(u(rng) + 1e-300), sum += x;
-  Vec3 p{};
-  for (size_t i = 0; i < w.size(); ++i) p += w[i] * (wts[i] / sum);
-  return p;
-}
+using test::randomPointIn;
 
 /// A chain of `length` random portals climbing along +z, each tilted and shifted a little.
 std::vector<Winding> randomChain(std::mt19937_64& rng, int length) {
