@@ -103,14 +103,14 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
   // grazed it) is kept whole: it is not decided here.
   std::vector<std::vector<Piece>> pieces(nCells);
   std::vector<uint8_t> undecided(scene.patches.size(), 0);
+  for (const Cell& cell : sub.cells)
+    for (uint32_t p : cell.interiorPatches) undecided[p] = 1;
   tbb::parallel_for(size_t{0}, nCells, [&](size_t c) {
     const Cell& cell = sub.cells[c];
     const Vec3 inside = cell.shape.centroid();
     for (uint32_t p : cell.patches) {
-      if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p)) {
-        undecided[p] = 1;  // benign race: every writer writes 1
+      if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p))
         continue;
-      }
       const ConvexPolygon& poly = scene.patches[p].polygon;
       if (poly.plane.distance(inside) <= 0) continue;  // faces out of this cell
       if (auto piece = pieceInCell(poly, cell.shape, tol))

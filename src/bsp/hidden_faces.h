@@ -14,9 +14,11 @@ namespace gv {
 
 /// A cell whose winding number reaches this is inside a closed solid. Outward-facing closed
 /// solids (brushes, boxes) count +1 inside; inward-facing shells (a 2.5D sector's floor,
-/// ceiling and walls) count -1, so their air is never taken for solid; open surfaces give
-/// fractions, and half a turn is the standard threshold for a soup.
-inline constexpr double kSolidWindingNumber = 0.5;
+/// ceiling and walls) count -1, so their air is never taken for solid. Open surfaces give
+/// fractions: just behind a lone one-sided quad it tends to +1/2, the usual threshold for a soup,
+/// so the threshold sits above it: a face is dropped only inside a solid, never for lying behind
+/// an open sheet (dropping too little costs time; dropping a visible face would be a leak).
+inline constexpr double kSolidWindingNumber = 0.75;
 
 struct HiddenFaceOptions {
   /// Replace a patch of which only a part is hidden or covered by its remaining pieces (cut

@@ -630,7 +630,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
       [&](PatchSearch& w, size_t s) {
         seen[s] = w.run(static_cast<uint32_t>(s));
         const size_t d = ++done;
-        if (options.progress && (d % 256 == 0 || d == n)) {
+        if (options.progress && (d % 64 == 0 || d == n)) {
           std::lock_guard lock(progressMutex);
           options.progress(d, n);
         }

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "bsp/hidden_faces.h"
 #include "bsp/subdivision.h"
 #include "generators/maze.h"
 #include "generators/office.h"
@@ -206,7 +207,7 @@ TEST(PropagationSink, VisCommandWritesTheInMemoryGraphsFile) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "visibility.txt.part"));
 
-  const Scene scene = loadScene(obj);
+  const Scene scene = removeHiddenFaces(loadScene(obj));  // what vis reads by default
   BspOptions bsp;
   bsp.minCoverage = kVisibilityMinCoverage;  // vis's default
   const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene, bsp));
