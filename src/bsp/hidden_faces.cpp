@@ -19,7 +19,7 @@
 
 #include "bsp/coplanar_clip.h"
 #include "bsp/subdivision.h"
-#include "util/timing.h"
+#include "scene/face_to_patches.h"
 
 namespace gv {
 namespace {
@@ -49,24 +49,9 @@ std::optional<ConvexPolygon> pieceInCell(const ConvexPolygon& p, const ConvexPol
   return cur;
 }
 
-double diameterOf(const ConvexPolygon& p) {
-  double d = 0;
-  for (size_t i = 0; i < p.vertices.size(); ++i)
-    for (size_t j = i + 1; j < p.vertices.size(); ++j)
-      d = std::max(d, distance(p.vertices[i], p.vertices[j]));
-  return d;
-}
-
-/// The importers' sliver rule (face_to_patches.cpp): a piece narrower than the model tolerance
-/// would not come back from patches.obj as a patch.
-bool isUsable(const ConvexPolygon& p, const Tolerance& tol) {
-  return 2 * p.area() / std::max(diameterOf(p), tol.length()) > tol.planeOffset();
-}
-
 /// A patch's fragment whose front looks into one cell.
 struct Piece {
   uint32_t patch = 0;
-  uint32_t cell = 0;
   ConvexPolygon polygon;
 };
 
@@ -86,7 +71,6 @@ double windingNumber(const Scene& scene, const Vec3& p) {
 
 Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
                         HiddenFaceReport* report) {
-  const auto start = Clock::now();
   HiddenFaceReport rep;
   if (scene.patches.empty()) {
     if (report) *report = rep;
@@ -97,7 +81,6 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
   const Subdivision sub = buildSubdivision(scene, bsp);
   const Tolerance tol = sub.tree.tol;
   const size_t nCells = sub.cells.size();
-  rep.cells = nCells;
 
   // The pieces whose front looks into each cell; a patch left inside a cell (a plane that only
   // grazed it) is kept whole: it is not decided here.
@@ -114,7 +97,7 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
       const ConvexPolygon& poly = scene.patches[p].polygon;
       if (poly.plane.distance(inside) <= 0) continue;  // faces out of this cell
       if (auto piece = pieceInCell(poly, cell.shape, tol))
-        pieces[c].push_back({p, static_cast<uint32_t>(c), std::move(*piece)});
+        pieces[c].push_back({p, std::move(*piece)});
     }
   });
 
@@ -124,7 +107,6 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
     if (pieces[c].empty()) return;
     solid[c] = windingNumber(scene, sub.cells[c].shape.centroid()) >= kSolidWindingNumber;
   });
-  for (uint8_t s : solid) rep.solidCells += s;
 
   // Per patch: its pieces in air, after the earlier same-facing patches on its plane in the same
   // cell took their overlap. `cut` marks a patch that lost anything.
@@ -176,7 +158,8 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
       out.patches.push_back(patch);
       continue;
     }
-    std::erase_if(kept[p], [&](const ConvexPolygon& piece) { return !isUsable(piece, tol); });
+    // Pieces the importer would drop: patches.obj must read back as these patches.
+    std::erase_if(kept[p], [&](const ConvexPolygon& piece) { return isSliver(piece, tol); });
     if (kept[p].empty()) {
       ++(cutByTwin[p] && !cutByHiding[p] ? rep.coincident : rep.hidden);
     } else if (!options.cutPartly) {
@@ -193,7 +176,6 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
       }
     }
   }
-  rep.secondsTaken = secondsSince(start);
   if (report) *report = rep;
   return out;
 }

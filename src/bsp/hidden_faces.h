@@ -33,8 +33,6 @@ struct HiddenFaceReport {
   size_t partlyCoincident = 0;  ///< patches cut where an earlier same-facing patch covers them
   size_t piecesOut = 0;       ///< pieces the cut patches became
   size_t partlyKept = 0;      ///< partly hidden or covered patches kept whole (!cutPartly)
-  size_t solidCells = 0, cells = 0;  ///< of the all-planes BSP used to decide
-  double secondsTaken = 0;
   bool changed() const { return hidden + partlyHidden + coincident + partlyCoincident > 0; }
 };
 

@@ -56,26 +56,13 @@ bool isConvexCcw(const std::vector<Point2>& p) {
   return true;
 }
 
-/// Zero width: twice the area over the diameter is a polygon's thickness scale. One narrower
-/// than the model tolerance (a sliver left by a T-junction fix, 1e-4 of a short edge wide) is
-/// below the scene's resolution: the BSP would merge the planes around it, and sightlines from
-/// it graze its neighbours' planes at a depth the tolerance does not resolve.
-bool isSliver(double twiceArea, double diameter, const Tolerance& tol) {
-  return twiceArea / std::max(diameter, tol.length()) <= tol.planeOffset();
-}
-
 /// Adds the piece if it is a usable polygon facing the same way as the face. A piece of a split
 /// face is held to the face's own sliver rule: the patches written to patches.obj must import
 /// again as the same patches (face k = patch k), so none may be one the importer would drop.
 void addPiece(std::vector<Vec3> verts, const Vec3& faceNormal, const Tolerance& tol,
               std::vector<ConvexPolygon>& out) {
   auto poly = ConvexPolygon::fromVertices(std::move(verts), tol);
-  if (!poly || dot(poly->plane.normal, faceNormal) <= 0) return;
-  double diameter = 0;
-  const auto& pv = poly->vertices;
-  for (size_t i = 0; i < pv.size(); ++i)
-    for (size_t j = i + 1; j < pv.size(); ++j) diameter = std::max(diameter, distance(pv[i], pv[j]));
-  if (isSliver(2 * poly->area(), diameter, tol)) return;
+  if (!poly || dot(poly->plane.normal, faceNormal) <= 0 || isSliver(*poly, tol)) return;
   out.push_back(std::move(*poly));
 }
 
@@ -87,6 +74,18 @@ void addFan(const std::vector<Vec3>& v, const std::vector<size_t>& idx, const Ve
 
 }  // namespace
 
+double diameterOf(const std::vector<Vec3>& vertices) {
+  double d = 0;
+  for (size_t i = 0; i < vertices.size(); ++i)
+    for (size_t j = i + 1; j < vertices.size(); ++j)
+      d = std::max(d, distance(vertices[i], vertices[j]));
+  return d;
+}
+
+bool isSliver(double twiceArea, double diameter, const Tolerance& tol) {
+  return twiceArea / std::max(diameter, tol.length()) <= tol.planeOffset();
+}
+
 FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
   FacePatches result;
   for (const Vec3& p : face)
@@ -94,9 +93,7 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
   const std::vector<Vec3> v = dropRepeatedVertices(face, tol.length());
   if (v.size() < 3) return result;
   const Vec3 n2 = newellNormal(v);
-  double diameter = 0;
-  for (size_t i = 0; i < v.size(); ++i)
-    for (size_t j = i + 1; j < v.size(); ++j) diameter = std::max(diameter, distance(v[i], v[j]));
+  const double diameter = diameterOf(v);
   if (isSliver(length(n2), diameter, tol)) return result;
   const Vec3 normal = normalize(n2);
 

@@ -29,6 +29,20 @@ struct FacePatches {
 /// Vertices of the output are input vertices: nothing is moved or re-projected.
 FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol);
 
+/// The largest distance between two of the vertices.
+double diameterOf(const std::vector<Vec3>& vertices);
+
+/// Zero width: twice the area over the diameter is a polygon's thickness scale. One narrower than
+/// the model tolerance (a sliver left by a T-junction fix, 1e-4 of a short edge wide) is below the
+/// scene's resolution: the BSP would merge the planes around it, and sightlines from it graze its
+/// neighbours' planes at a depth the tolerance does not resolve. Import drops such faces and
+/// pieces, and every later step that makes patches must too, so that patches.obj reads back as
+/// the same patches.
+bool isSliver(double twiceArea, double diameter, const Tolerance& tol);
+inline bool isSliver(const ConvexPolygon& p, const Tolerance& tol) {
+  return isSliver(2 * p.area(), diameterOf(p.vertices), tol);
+}
+
 /// Counts what happened to a face in the importer's report; false when the face was dropped.
 bool countFaceOutcome(FaceOutcome outcome, ImportReport& report);
 
