@@ -11,7 +11,6 @@
 #include "cli/commands.h"
 #include "cli/scene_input.h"
 #include "cli/output_files.h"
-#include "input/load_scene.h"
 #include "util/input_error.h"
 #include "util/progress_bar.h"
 
@@ -42,9 +41,7 @@ Action addCellsCommand(CLI::App& app) {
                   "Planes scored per cell (largest patch area first)")
       ->check(CLI::Range(1, 1'000'000));
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
-  cmd->add_flag("--keep-hidden", s->keepHidden,
-                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
-                "twins, which are dropped by default (bsp/hidden_faces.h)");
+  addKeepHiddenFlag(*cmd, s->keepHidden);
   return [s] {
     const Scene scene = loadPipelineScene(s->scene, {false, s->keepHidden});
     ProgressBar bar("BSP");

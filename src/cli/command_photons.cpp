@@ -9,7 +9,6 @@
 #include "cli/commands.h"
 #include "cli/scene_input.h"
 #include "cli/output_files.h"
-#include "input/load_scene.h"
 #include "radiosity/photon_comparison.h"
 #include "radiosity/photon_reference.h"
 #include "radiosity/radiosity_io.h"
@@ -59,9 +58,7 @@ Action addPhotonsCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
-  cmd->add_flag("--keep-hidden", s->keepHidden,
-                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
-                "twins, which are dropped by default (bsp/hidden_faces.h)");
+  addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--no-contact-split", s->noContactSplit,
                 "Keep the patches whole (as `globalvis radiosity --no-contact-split`)");
   return [s] {

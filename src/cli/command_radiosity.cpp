@@ -11,7 +11,6 @@
 #include "cli/commands.h"
 #include "cli/scene_input.h"
 #include "cli/output_files.h"
-#include "input/load_scene.h"
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
@@ -81,9 +80,7 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", s->quiet,
                 "No progress on stderr (there is none unless stderr is a terminal)");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
-  cmd->add_flag("--keep-hidden", s->keepHidden,
-                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
-                "twins, which are dropped by default (bsp/hidden_faces.h)");
+  addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_option("--camera", s->camera,
                   "Viewpoint of the pictures: ex,ey,ez,tx,ty,tz[,fov] (eye, target, vertical "
                   "field of view in degrees; default: a view into the scene, roof cut away)")

@@ -11,7 +11,6 @@
 #include "cli/commands.h"
 #include "cli/scene_input.h"
 #include "cli/output_files.h"
-#include "input/load_scene.h"
 #include "scene/scene_io.h"
 #include "util/input_error.h"
 #include "util/progress_bar.h"
@@ -46,9 +45,7 @@ Action addVisCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
-  cmd->add_flag("--keep-hidden", s->keepHidden,
-                "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
-                "twins, which are dropped by default (bsp/hidden_faces.h)");
+  addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--contact-split", s->contactSplit,
                 "Cut patches along the outlines of the patches resting on them first, as "
                 "`radiosity` does (scene/contact_split.h): more patches, much shorter blocker "

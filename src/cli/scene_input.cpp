@@ -19,6 +19,12 @@ void dropHidden(Scene& scene) {
 
 }  // namespace
 
+void addKeepHiddenFlag(CLI::App& cmd, bool& keepHidden) {
+  cmd.add_flag("--keep-hidden", keepHidden,
+               "Keep the faces no air reaches (inside closed solids) and coincident same-facing "
+               "twins, which are dropped by default (bsp/hidden_faces.h)");
+}
+
 Scene loadPipelineScene(const std::string& path, const SceneInputOptions& options) {
   Scene scene = loadScene(path);
   if (!options.keepHidden) dropHidden(scene);

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "scene/scene.h"
 
 namespace gv::cli {
@@ -13,6 +15,9 @@ struct SceneInputOptions {
   bool contactSplit = false;  ///< radiosity and photons: cut patches at contacts
   bool keepHidden = false;    ///< keep faces inside closed solids and coincident twins
 };
+
+/// The `--keep-hidden` flag of every command that reads a scene through loadPipelineScene.
+void addKeepHiddenFlag(CLI::App& cmd, bool& keepHidden);
 
 /// Loads `path` and prepares it as `options` say; the import report counts every step.
 Scene loadPipelineScene(const std::string& path, const SceneInputOptions& options);
