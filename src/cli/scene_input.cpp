@@ -11,8 +11,8 @@ void dropHidden(Scene& scene) {
   HiddenFaceReport h;
   Scene cleaned = removeHiddenFaces(scene, {}, &h);
   ImportReport& r = cleaned.report;
-  r.hiddenDropped += h.hidden;
-  r.coincidentDropped += h.coincident;
+  r.hiddenDropped = h.hidden;
+  r.coincidentDropped = h.coincident;
   r.partlyHiddenKept = h.partlyKept;
   scene = std::move(cleaned);
 }
@@ -27,13 +27,13 @@ void addKeepHiddenFlag(CLI::App& cmd, bool& keepHidden) {
 
 Scene loadPipelineScene(const std::string& path, const SceneInputOptions& options) {
   Scene scene = loadScene(path);
+  // The contact split first, on every face: a hidden face (a desk's bottom on a floor slab) is
+  // what cuts the face it rests on along the contact line. The hidden-face pass after it then
+  // drops the pieces under the resting solid and the twins the split makes of overlapping
+  // coplanar faces. Dropping first left the floors uncut: the default office's error against
+  // the light tracer went from 0.86 % to 2.97 %.
+  if (options.contactSplit) splitPatchesAtContacts(scene);
   if (!options.keepHidden) dropHidden(scene);
-  if (options.contactSplit) {
-    splitPatchesAtContacts(scene);
-    // The split cuts overlapping coplanar patches along each other's outlines into identical
-    // pieces: twins, of which one is kept (a photon lands on one of them, not on both).
-    if (!options.keepHidden) dropHidden(scene);
-  }
   return scene;
 }
 

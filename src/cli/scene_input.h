@@ -1,6 +1,6 @@
-// The scene every pipeline command reads: the file's patches (scene/scene_io.h), without the
-// faces no air reaches and coincident twins (bsp/hidden_faces.h), then, for radiosity, cut at
-// contacts (scene/contact_split.h).
+// The scene every pipeline command reads: the file's patches (input/load_scene.h), for radiosity
+// cut at contacts (scene/contact_split.h), then without the faces no air reaches and coincident
+// twins (bsp/hidden_faces.h).
 #pragma once
 
 #include <string>
