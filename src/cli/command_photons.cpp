@@ -2,13 +2,14 @@
 // with per-patch standard errors, and optionally a radiosity run compared against it.
 #include <fmt/core.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "cli/scene_input.h"
 #include "cli/output_files.h"
+#include "cli/scene_input.h"
 #include "radiosity/photon_comparison.h"
 #include "radiosity/photon_reference.h"
 #include "radiosity/radiosity_io.h"
@@ -19,6 +20,97 @@
 #include "util/timing.h"
 
 namespace gv::cli {
+namespace {
+
+nlohmann::json channelsJson(const PhotonChannelCounts& n) {
+  return {{"total", n.total},
+          {"compared", n.compared},
+          {"noisy", n.noisy},
+          {"noisy_rule", fmt::format("photon relative standard error above {:g} %",
+                                     100 * kMeaningfulPhotonNoise)},
+          {"zero_photon", n.zeroPhoton},
+          {"leak", n.leaks},
+          {"too_dim", n.tooDim},
+          {"unlit", n.unlit}};
+}
+
+nlohmann::json leaksJson(const PhotonComparison& c) {
+  nlohmann::json worst = nlohmann::json::array();
+  for (const PhotonLeak& l : c.worstLeaks)
+    worst.push_back({{"patch", l.patch},
+                     {"channel", l.channel},
+                     {"expected_hits", l.expectedHits},
+                     {"solver_reflected", l.solver}});
+  return {{"channels", c.channels.leaks},
+          {"surfaces", c.leakSurfaces},
+          {"patches", c.leakPatches},
+          {"power_share", c.leakedPowerShare},
+          {"min_expected_hits", kLeakExpectedHits},
+          {"worst", worst}};
+}
+
+nlohmann::json regionsJson(const PhotonComparison& c) {
+  nlohmann::json j = {{"size", c.regionSize},          {"channels", c.regionChannels},
+                      {"compared", c.regionsCompared}, {"noisy", c.regionsNoisy},
+                      {"small", c.regionsSmall},       {"max_noise", kMeaningfulRegionNoise},
+                      {"min_share", kMinRegionShare}};
+  if (c.worstRegion) {
+    const PhotonRegion& w = *c.worstRegion;
+    j["worst"] = {{"low", {w.low.x, w.low.y, w.low.z}},
+                  {"channel", w.channel},
+                  {"relative", w.relative},
+                  {"solver", w.solver},
+                  {"photons", w.photons},
+                  {"patches", w.patches}};
+  }
+  return j;
+}
+
+/// The text lines of the counts, leaks and regions (from the stats' JSON, as printed above).
+void printCounts(const nlohmann::json& c) {
+  const auto& n = c["channels"];
+  fmt::print(
+      "L2 of B-Ke over all {} patches and channels: {:.2f} % ({} surfaces, {} coincident twin "
+      "groups of {} patches)\n",
+      c["surfaces"].get<size_t>() - c["twin_groups"].get<size_t>() +
+          c["twin_patches"].get<size_t>(),
+      c["l2_reflected"].is_number() ? 100 * c["l2_reflected"].get<double>() : INFINITY,
+      c["surfaces"].get<size_t>(), c["twin_groups"].get<size_t>(), c["twin_patches"].get<size_t>());
+  fmt::print(
+      "channels: {} = {} compared + {} left out as noisy ({}) + {} without a photon ({} leaks, {} "
+      "too dim to tell: < {:g} hits expected, {} unlit in the solution too)\n",
+      n["total"].get<size_t>(), n["compared"].get<size_t>(), n["noisy"].get<size_t>(),
+      n["noisy_rule"].get<std::string>(), n["zero_photon"].get<size_t>(), n["leak"].get<size_t>(),
+      n["too_dim"].get<size_t>(), kLeakExpectedHits, n["unlit"].get<size_t>());
+  const auto& l = c["leaks"];
+  fmt::print("leaks: {} patches ({} surfaces), {:.3f} % of the solution's reflected power\n",
+             l["patches"].get<size_t>(), l["surfaces"].get<size_t>(),
+             100 * l["power_share"].get<double>());
+  for (const auto& w : l["worst"])
+    fmt::print("  patch {} channel {}: {:.0f} photon hits expected, solver B-Ke {:.4g}\n",
+               w["patch"].get<size_t>(), w["channel"].get<int>(), w["expected_hits"].get<double>(),
+               w["solver_reflected"].get<double>());
+  const auto& r = c["regions"];
+  fmt::print(
+      "regions ({:g}-unit cubes): {} region channels, {} compared, {} left out as noisy "
+      "(photon relative standard error above {:g} % or no photon), {} below {:g} % of "
+      "the reflected power\n",
+      r["size"].get<double>(), r["channels"].get<size_t>(), r["compared"].get<size_t>(),
+      r["noisy"].get<size_t>(), 100 * kMeaningfulRegionNoise, r["small"].get<size_t>(),
+      100 * kMinRegionShare);
+  if (r.contains("worst")) {
+    const auto& w = r["worst"];
+    const auto& low = w["low"];
+    fmt::print(
+        "worst region: {:+.2f} % (channel {}, cube from ({:g}, {:g}, {:g}), {} patches, solver "
+        "{:.4g} vs photons {:.4g})\n",
+        100 * w["relative"].get<double>(), w["channel"].get<int>(), low[0].get<double>(),
+        low[1].get<double>(), low[2].get<double>(), w["patches"].get<size_t>(),
+        w["solver"].get<double>(), w["photons"].get<double>());
+  }
+}
+
+}  // namespace
 
 Action addPhotonsCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
@@ -29,7 +121,7 @@ Action addPhotonsCommand(CLI::App& app) {
   struct State {
     std::string scene, output, compare;
     PhotonOptions options;
-    double sigmas = 4, allowance = 0.01;
+    double sigmas = 4, allowance = 0.01, regionSize = kDefaultRegionSize;
     bool keepHidden = false;
     bool json = false, noContactSplit = false;
   };
@@ -46,10 +138,17 @@ Action addPhotonsCommand(CLI::App& app) {
   cmd->add_option("--seed", s->options.seed, "Random seed")->capture_default_str();
   cmd->add_option("--compare", s->compare,
                   "A `globalvis radiosity` output directory of the same scene: print the "
-                  "solver-minus-photon relative errors over the patch channels whose photon "
-                  "estimate is within 1 % (exit code 1 if any is beyond --sigmas standard errors "
-                  "plus --allowance)")
+                  "area-weighted L2 of B-Ke over all patches, the solver-minus-photon relative "
+                  "errors over the patch channels whose photon estimate is within 1 %, how many "
+                  "channels were left out and why, leaks (lit patches where >= 10 photon hits "
+                  "were expected and none came) and the worst region (exit code 1 on a leak or a "
+                  "channel beyond --sigmas standard errors plus --allowance)")
       ->check(CLI::ExistingDirectory);
+  cmd->add_option("--region-size", s->regionSize,
+                  "With --compare: side of the region cubes (scene units) whose reflected power "
+                  "is compared")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--sigmas", s->sigmas, "With --compare: allowed standard errors")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
@@ -88,7 +187,8 @@ Action addPhotonsCommand(CLI::App& app) {
                             {"seconds", seconds}};
     int code = 0;
     if (!solver.empty()) {
-      const PhotonComparison c = comparePhotons(scene, solver, ref, s->sigmas, s->allowance);
+      const PhotonComparison c =
+          comparePhotons(scene, solver, ref, s->sigmas, s->allowance, s->regionSize);
       stats["comparison"] = {{"run", s->compare},
                              {"compared", c.compared},
                              {"beyond_tolerance", c.failures},
@@ -99,8 +199,15 @@ Action addPhotonsCommand(CLI::App& app) {
                              {"worst_patch", c.worstPatch},
                              {"worst_channel", c.worstChannel},
                              {"sigmas", s->sigmas},
-                             {"allowance", s->allowance}};
-      if (c.failures > 0) code = 1;
+                             {"allowance", s->allowance},
+                             {"l2_reflected", c.l2Reflected},
+                             {"surfaces", c.surfaces},
+                             {"twin_groups", c.twinGroups},
+                             {"twin_patches", c.twinPatches},
+                             {"channels", channelsJson(c.channels)},
+                             {"leaks", leaksJson(c)},
+                             {"regions", regionsJson(c)}};
+      if (c.failures > 0 || c.channels.leaks > 0) code = 1;
     }
     writeJsonFile(stats, dir / "stats.json");
     if (s->json) {
@@ -118,6 +225,7 @@ Action addPhotonsCommand(CLI::App& app) {
           100 * c["area_weighted_signed"].get<double>(), 100 * c["rms_relative"].get<double>(),
           100 * c["max_relative"].get<double>(), c["worst_patch"].get<size_t>(),
           c["beyond_tolerance"].get<size_t>(), s->sigmas, 100 * s->allowance);
+      printCounts(c);
     }
     return code;
   };

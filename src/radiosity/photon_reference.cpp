@@ -148,6 +148,13 @@ PhotonResult photonReference(const Scene& scene, const EmbreeScene& rays,
     b = {b.r + mean.r, b.g + mean.g, b.b + mean.b};
   }
   result.photons = perBatch * batches;
+  for (const uint32_t k : emitters) {
+    // A photon's power in a batch over the batch count: its share of the mean of the batches.
+    const Rgb& e = scene.materials[scene.patches[k].material].emission;
+    const double scale = totalWeight / channelSum(e) / static_cast<double>(result.photons);
+    Rgb& m = result.photonPower;
+    m = {std::max(m.r, e.r * scale), std::max(m.g, e.g * scale), std::max(m.b, e.b * scale)};
+  }
   for (const Batch& b : out) result.rays += b.rays;
   return result;
 }

@@ -26,6 +26,11 @@ struct PhotonResult {
   std::vector<Rgb> standardError;  ///< of `radiosity`, from the spread of the batch estimates
   uint64_t photons = 0;
   uint64_t rays = 0;  ///< rays traced (one per photon segment)
+  /// Per channel, the most that one photon's tally adds to a patch's reflected power (before the
+  /// patch's ρ): W e_c / (Σ_c e_c · photons) for the brightest-in-c emitter e, W the emitted power
+  /// summed over channels. Bounces never raise it (Russian roulette divides ρ_c by max ρ), so
+  /// reflected power / (ρ · photonPower) is a lower bound on the photon hits it takes.
+  Rgb photonPower;
 };
 
 /// Light tracing with the solver's physics: patches are one-sided Lambertian (emission E = Ke,

@@ -2,6 +2,7 @@
 // files), its comparison of a `radiosity` run, and its errors on bad input.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -27,6 +28,8 @@ TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
                    "' --photons 400000 --compare '" + run.string() + "' --allowance 0.02");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("vs photons over"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("L2 of B-Ke over all 2 patches"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("leaks: 0 patches"), std::string::npos) << r.output;
 
   // Both files have radiosity.txt's format, so the report module's reader takes them.
   const std::vector<Rgb> b = readRadiosityTxt((ref / "radiosity.txt").string(), 2);
@@ -40,6 +43,51 @@ TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
   EXPECT_EQ(j["photons"], 400000);
   EXPECT_EQ(j["comparison"]["beyond_tolerance"], 0);
   EXPECT_LT(j["comparison"]["max_relative"].get<double>(), 0.02);
+  // Every channel counted: the receiver's three compared, the emitter's (ρ = 0) unlit.
+  const nlohmann::json& n = j["comparison"]["channels"];
+  EXPECT_EQ(n["total"], 6);
+  EXPECT_EQ(n["compared"], 3);
+  EXPECT_EQ(n["zero_photon"], 3);
+  EXPECT_EQ(n["unlit"], 3);
+  EXPECT_EQ(j["comparison"]["leaks"]["channels"], 0);
+  EXPECT_LT(j["comparison"]["l2_reflected"].get<double>(), 0.02);
+  EXPECT_EQ(j["comparison"]["regions"]["size"], 3.0);
+  EXPECT_LT(std::abs(j["comparison"]["regions"]["worst"]["relative"].get<double>()), 0.02);
+}
+
+TEST(PhotonsCliTest, LeakExitsOneAndIsNamed) {
+  const auto dir = test::scratchDir();
+  test::writeHowellPair(dir);
+  // The pair and a third square below the receiver facing down, which no photon can reach.
+  test::writeFile(dir / "leak.obj",
+                  "mtllib pair.mtl\n"
+                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                  "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                  "v 0 0 -1\nv 1 0 -1\nv 1 1 -1\nv 0 1 -1\n"
+                  "usemtl grey\nf 1 2 3 4\n"
+                  "usemtl light\nf 5 8 7 6\n"
+                  "usemtl grey\nf 9 12 11 10\n");
+  // A "run" right on the receiver that lights the third square: (0.1 / 0.6) · 1 m² against
+  // photons of 3 / 100000 in red: ~5600 hits expected.
+  std::filesystem::create_directories(dir / "leaky");
+  const std::string receiver = std::to_string(0.6 * 3 * test::kHowellC11) + " " +
+                               std::to_string(0.6 * 2 * test::kHowellC11) + " " +
+                               std::to_string(0.6 * 1 * test::kHowellC11);
+  test::writeFile(dir / "leaky" / "radiosity.txt",
+                  "# made up\n0 " + receiver + "\n1 3 2 1\n2 0.1 0 0\n");
+  const test::CliResult r = test::runCli(
+      "photons '" + (dir / "leak.obj").string() + "' -o '" + (dir / "ref").string() +
+      "' --photons 100000 --allowance 0.05 --compare '" + (dir / "leaky").string() + "'");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("leaks: 1 patches"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("patch 2 channel 0"), std::string::npos) << r.output;
+  std::ifstream stats(dir / "ref" / "stats.json");
+  const nlohmann::json j = nlohmann::json::parse(stats);
+  EXPECT_EQ(j["comparison"]["beyond_tolerance"], 0);
+  EXPECT_EQ(j["comparison"]["leaks"]["channels"], 1);
+  EXPECT_EQ(j["comparison"]["channels"]["unlit"], 5);  // the emitter's 3, the square's g and b
+  EXPECT_NEAR(j["comparison"]["leaks"]["worst"][0]["expected_hits"].get<double>(),
+              0.1 / 0.6 * 100000 / 3, 1);
 }
 
 TEST(PhotonsCliTest, ComparisonBeyondToleranceExitsOne) {

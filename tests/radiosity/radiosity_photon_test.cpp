@@ -49,6 +49,16 @@ void checkAgainstPhotons(const Scene& scene, uint64_t photons, size_t minCompare
   EXPECT_GE(c.compared, minCompared);
   EXPECT_EQ(c.failures, 0u);
   EXPECT_LT(std::abs(c.meanSigned), meanBias);
+  // Everything counted (issue #18 item 3): no leak, and every surface channel accounted for.
+  std::printf(
+      "L2 of B-Ke %.4f; %zu leaks, %zu too dim, %zu unlit, %zu noisy of %zu channels; worst "
+      "region %+.4f of %zu compared\n",
+      c.l2Reflected, c.channels.leaks, c.channels.tooDim, c.channels.unlit, c.channels.noisy,
+      c.channels.total, c.worstRegion ? c.worstRegion->relative : 0.0, c.regionsCompared);
+  EXPECT_EQ(c.channels.leaks, 0u);
+  EXPECT_EQ(c.channels.total, 3 * c.surfaces);
+  EXPECT_EQ(c.channels.compared + c.channels.noisy + c.channels.zeroPhoton, c.channels.total);
+  EXPECT_EQ(c.channels.leaks + c.channels.tooDim + c.channels.unlit, c.channels.zeroPhoton);
 }
 
 TEST(PhotonReferenceTest, EmitterOverReceiverGivesRhoEF) {
