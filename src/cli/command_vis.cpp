@@ -44,6 +44,15 @@ Action addVisCommand(CLI::App& app) {
                   "BSP stop rule (see `globalvis cells --help`); 0 splits on every patch plane")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--cell-budget", s->propagation.cellSequenceBudget,
+                  "Portal sequences one cell-to-cell search (one directed portal) may test before "
+                  "it answers with everything it might reach (0 = no limit; conservative either "
+                  "way)")
+      ->capture_default_str();
+  cmd->add_option("--patch-budget", s->propagation.patchSequenceBudget,
+                  "Stabbing tests one source patch's search may run before it answers with every "
+                  "patch its cell may see (0 = no limit; conservative either way)")
+      ->capture_default_str();
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--contact-split", s->contactSplit,
@@ -97,6 +106,11 @@ Action addVisCommand(CLI::App& app) {
     fmt::print(
         "stabbing tests: {} cell-level, {} patch-level ({} unresolved); mean sequence {:.2f}\n",
         v.cellStabbingTests, v.patchStabbingTests, v.unresolvedStabbing, v.meanSequenceLength);
+    if (v.cellSearchesOverBudget + v.patchSearchesOverBudget > 0)
+      fmt::print(
+          "searches over budget, answered with all they might reach: {} of {} directed portals "
+          "(--cell-budget), {} of {} source patches (--patch-budget)\n",
+          v.cellSearchesOverBudget, 2 * v.portals, v.patchSearchesOverBudget, v.patches);
     fmt::print("blockers per PARTIAL pair {:.2f} (shaft cull {:.2f})\n", v.meanBlockersPerPartial,
                v.meanShaftCullPerPartial);
     fmt::print(

@@ -157,9 +157,11 @@ struct SearchInputs {
 
 // One thread's search state.
 struct Searcher {
-  Searcher(const SearchInputs& in, size_t cells, const StabbingOptions& options)
+  Searcher(const SearchInputs& in, size_t cells, const StabbingOptions& options,
+           uint64_t sequenceBudget)
       : g(in.g),
         inputs(in),
+        maxSequences(sequenceBudget),
         stabber(in.g.tol, options),
         visible(cells),
         found(cells),
@@ -168,6 +170,10 @@ struct Searcher {
 
   const Graph& g;
   const SearchInputs& inputs;
+  const uint64_t maxSequences;  // per search; 0: no limit (LeafPvsOptions::maxSequencesPerSearch)
+  uint64_t budgetEnd = 0;       // the search stops once `sequences` passes this
+  bool overBudget = false;      // the current search stopped: its answer is frames[1]
+  uint64_t searchesOverBudget = 0;
   // Results of directed portals ranked below this are used (see SearchInputs).
   size_t usableRanks = 0;
   PortalSequenceStabber stabber;
@@ -229,8 +235,17 @@ struct Searcher {
       start.erase(y);
     });
     path.assign(1, p.from);
+    overBudget = false;
+    budgetEnd = maxSequences ? sequences + maxSequences : UINT64_MAX;
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
+    if (overBudget) {
+      // Every cell a stabbable sequence through p reaches is in frames[1] (no branch enters a
+      // cell outside it): answering with all of it keeps the search conservative.
+      ++searchesOverBudget;
+      found.unite(frames[1]);
+      visible.unite(frames[1]);
+    }
   }
 
   bool reachesAll(const CellSet& set) const {
@@ -261,6 +276,8 @@ struct Searcher {
   // One step of recurse: the branch through portal `ri` of `cell`; false when the cell's own
   // sequence proved blocked (nothing more can be pushed on it).
   bool visitExit(int cell, size_t depth, int ri) {
+    if (sequences >= budgetEnd) overBudget = true;
+    if (overBudget) return false;  // unwinds the whole search (see searchFrom)
     const DirectedPortal& r = g.portals[ri];
     if (onPath[r.to]) return true;  // a line meets a convex cell in one segment
     frame(depth + 1);               // allocate first: references into `frames` are taken below
@@ -368,7 +385,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
                        : 1;
   std::vector<Searcher> searchers;
   searchers.reserve(threads);
-  for (size_t t = 0; t < threads; ++t) searchers.emplace_back(inputs, cells, options.stabbing);
+  for (size_t t = 0; t < threads; ++t) searchers.emplace_back(inputs, cells, options.stabbing, options.maxSequencesPerSearch);
   std::atomic<size_t> next{0}, finished{0};
   std::atomic<bool> stop{false};
   size_t reported = 0;  // the last count given to options.progress (from the calling thread)
@@ -434,6 +451,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
   for (const Searcher& s : searchers) {
     result.stabbing += s.stabber.stats();
     result.sequencesSearched += s.sequences;
+    result.searchesOverBudget += s.searchesOverBudget;
     for (auto [from, to] : {std::pair{&s.successes, &result.successesByLength},
                             std::pair{&s.failures, &result.failuresByLength}}) {
       if (to->size() < from->size()) to->resize(from->size(), 0);

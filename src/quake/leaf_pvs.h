@@ -49,6 +49,11 @@ struct LeafPvsOptions {
   /// tightest PVS, and slower. Off (the default): a search does not look for the cells whose
   /// own searches are all finished (their answer for the pair stands); see computeLeafPvs.
   bool bothSides = false;
+  /// A search that pushes more portal sequences than this (0: no limit) stops and answers with
+  /// every cell it might have reached (its might-see set after the reverse test): conservative,
+  /// looser, and bounded. Real levels have a few portals whose sequences fan out combinatorially
+  /// (thin slab cells stacked under long sightlines); one such search could run for minutes.
+  uint64_t maxSequencesPerSearch = 0;
 };
 
 struct LeafPvsResult {
@@ -67,6 +72,9 @@ struct LeafPvsResult {
   double meanClustersMightSee = 0;
   StabbingStats stabbing;
   uint64_t sequencesSearched = 0;  ///< portal sequences pushed by the searches
+  /// Directed-portal searches stopped by LeafPvsOptions::maxSequencesPerSearch (their answer is
+  /// their might-see set).
+  uint64_t searchesOverBudget = 0;
   /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
   std::vector<uint64_t> successesByLength, failuresByLength;
   /// Per directed portal (2i: portal i from clusterA into clusterB; 2i+1: the way back), the

@@ -125,6 +125,7 @@ struct PatchSearchResult {
   std::vector<uint32_t> sameCellVisible;  ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
   uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
+  bool overBudget = false;       ///< the search gave up: `seen` is everything it might reach
 };
 
 using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
@@ -186,6 +187,7 @@ class PatchSearch {
     stabber_.resetStats();
     facingRuleTests_ = 0;
     source_ = s;
+    overBudget_ = false;
     // The source's own pieces are never targets: they count as saturated.
     for (auto [cell, k] : placements_[s]) decrement(cell);
     for (auto [cell, k] : placements_[s]) {
@@ -201,6 +203,11 @@ class PatchSearch {
       }
       // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
       visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
+      if (overBudget_) break;
+    }
+    if (overBudget_) {
+      markEverythingReachable(s);
+      result.overBudget = true;
     }
     for (uint32_t t : touched_) {
       result.seen.push_back(seenEntry(t, flags_[t]));
@@ -222,7 +229,36 @@ class PatchSearch {
     return result;
   }
 
+  /// Portal sequences (pushes of portals and targets) one run may test before it gives up and
+  /// marks everything it might reach (0: no limit).
+  void setBudget(uint64_t pushes) { budget_ = pushes ? pushes : UINT64_MAX; }
+
  private:
+  /// The conservative answer of a search over budget: every piece in every cell S's cells may
+  /// see (the cell search's sets; without them, the cells the flows of their portals reach), with
+  /// every flag it could get there. The search itself marks only pieces in such cells: a sequence
+  /// stabbed from S's piece is one stabbed from S's cell.
+  void markEverythingReachable(uint32_t s) {
+    CellSet cells(sub_.cells.size());
+    for (auto [cell, k] : placements_[s]) {
+      const CellPatch& cp = cellPatches_[cell][k];
+      if (!cp.facesIn && !cp.interior) continue;
+      if (!cellReach_.empty()) {
+        cells.unite(cellReach_[cell]);
+        continue;
+      }
+      cells.insert(cell);
+      for (uint32_t pid : sub_.cells[cell].portals) {
+        const Portal& p = sub_.portals[pid];
+        cells.unite(might_.through(pid, p.front != cell));
+      }
+    }
+    cells.forEach([&](size_t c) {
+      for (const CellPatch& t : cellPatches_[c])
+        if (t.patch != s) mark(t.patch, attainable(t));
+    });
+  }
+
   void decrement(uint32_t cell) {
     if (unsaturatedCount_[cell] == baseCount_[cell]) touchedCells_.push_back(cell);
     if (--unsaturatedCount_[cell] == 0) unsaturated_.erase(cell);
@@ -285,6 +321,10 @@ class PatchSearch {
   /// `reach`: the cells this branch may still reach (null: all).
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
     checkDeadline();
+    if (overBudget_ || stabber_.stats().tests >= budget_) {
+      overBudget_ = true;  // unwinds the search; run() then answers conservatively
+      return;
+    }
     onPath_[cell] = 1;
     for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
     if (stack_.size() <= depth) stack_.resize(depth + 1);
@@ -306,6 +346,7 @@ class PatchSearch {
       if (stabber_.push(scratch_) == StabbingResult::Blocked) continue;
       visit(next, depth + 1, &r);
       stabber_.pop();
+      if (overBudget_) break;
     }
     onPath_[cell] = 0;
   }
@@ -326,6 +367,8 @@ class PatchSearch {
   uint32_t source_ = 0;
   const ConvexPolygon* sourcePiece_ = nullptr;  // S's piece that starts the current sequence
   uint64_t facingRuleTests_ = 0;
+  uint64_t budget_ = UINT64_MAX;  // stabbing tests per run (setBudget)
+  bool overBudget_ = false;
   Tolerance tol_;
 };
 
@@ -517,6 +560,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
     // part of `vis`).
     pvsOptions.bothSides = true;
     pvsOptions.parallel = threads > 1;
+    pvsOptions.maxSequencesPerSearch = options.cellSequenceBudget;
     // Between waves of the search: progress, and the deadline (a wave is short).
     pvsOptions.progress = [&](size_t done, size_t total) {
       if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)
@@ -545,6 +589,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
     st.meanSequenceLength =
         st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
     st.cellStabbing = pvs.stabbing;
+    st.cellSearchesOverBudget = pvs.searchesOverBudget;
     flow = std::move(pvs.portalFlow);
     reach.flow = &flow;
   } else {
@@ -625,6 +670,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
       [&] {
         PatchSearch w(sub, cellPatches, placements, reach, cellReach, tol);
         w.checkDeadline.deadline = options.deadline;
+        w.setBudget(options.patchSequenceBudget);
         return w;
       },
       [&](PatchSearch& w, size_t s) {
@@ -641,6 +687,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
     stabbing += r.stabbing;
     st.patchFacingRuleTests += r.facingRuleTests;
     seenEntries += r.seen.size();
+    st.patchSearchesOverBudget += r.overBudget;
   }
   st.meanPatchesSeen = n ? double(seenEntries) / double(n) : 0;
   st.patchStabbingTests = stabbing.tests + st.patchFacingRuleTests;

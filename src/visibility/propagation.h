@@ -14,6 +14,10 @@
 
 namespace gv {
 
+/// Defaults of PropagationOptions' search budgets.
+inline constexpr uint64_t kDefaultCellSequenceBudget = 200000;
+inline constexpr uint64_t kDefaultPatchSequenceBudget = 200000;
+
 struct PropagationOptions {
   /// Threads for the per-source searches (1 = serial). The output does not depend on it.
   int threads = 0;  ///< 0: all hardware threads
@@ -38,6 +42,13 @@ struct PropagationOptions {
   /// The searches give up (computeVisibility throws PropagationDeadlineExceeded) once the clock
   /// passes this: a time budget that also holds inside one long search (`globalvis bench`).
   Clock::time_point deadline = Clock::time_point::max();
+  /// Portal sequences one search may push before it stops and answers with everything it might
+  /// reach (0: no limit): per directed portal of the cell search, per source patch of the patch
+  /// searches. Conservative either way (a stopped search lists more, never less); they bound the
+  /// time of the few searches that fan out combinatorially on real levels. Counted in
+  /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget.
+  uint64_t cellSequenceBudget = kDefaultCellSequenceBudget;
+  uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;
 };
 
 /// Thrown by computeVisibility when PropagationOptions::deadline has passed.

@@ -124,6 +124,8 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"partial_percent_of_listed", listed ? 100.0 * double(s.pairsPartial) / double(listed) : 0.0},
       {"same_cell_shortcuts", s.sameCellShortcuts},
       {"cell_pairs_visible", s.cellPairsVisible},
+      {"cell_searches_over_budget", s.cellSearchesOverBudget},
+      {"patch_searches_over_budget", s.patchSearchesOverBudget},
       {"cell_stabbing_tests", s.cellStabbingTests},
       {"patch_stabbing_tests", s.patchStabbingTests},
       {"patch_facing_rule_tests", s.patchFacingRuleTests},

@@ -261,6 +261,28 @@ TEST(LeafPvsRealMap, QbspFeaturesContainsEveryRayPairAndMatchesVis) {
   EXPECT_EQ(computeLeafPvs(prt, serial).visibleLeafs, pvs.visibleLeafs);
 }
 
+TEST(LeafPvsRealMap, SearchesOverBudgetKeepEveryPairAndStayDeterministic) {
+  const PrtFile prt = sharedMap("qbspfeatures");
+  if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
+  const LeafPvsResult full = computeLeafPvs(prt);
+  LeafPvsOptions budget;
+  budget.maxSequencesPerSearch = 4;
+  const LeafPvsResult cut = computeLeafPvs(prt, budget);
+  EXPECT_EQ(full.searchesOverBudget, 0u);
+  EXPECT_GT(cut.searchesOverBudget, prt.portals.size() / 4);  // the budget bites
+  expectSymmetricWithSelf(cut);
+  ASSERT_EQ(cut.visibleLeafs.size(), full.visibleLeafs.size());
+  for (size_t l = 0; l < cut.visibleLeafs.size(); ++l)
+    EXPECT_TRUE(std::includes(cut.visibleLeafs[l].begin(), cut.visibleLeafs[l].end(),
+                              full.visibleLeafs[l].begin(), full.visibleLeafs[l].end()))
+        << "leaf " << l;
+  EXPECT_GT(cut.meanLeafsVisible, full.meanLeafsVisible);
+  EXPECT_GT(checkAgainstRays(prt, cut, 20000, 5), 50u);
+  LeafPvsOptions serial = budget;
+  serial.parallel = false;
+  EXPECT_EQ(computeLeafPvs(prt, serial).visibleLeafs, cut.visibleLeafs);
+}
+
 TEST(LeafPvsRealMap, LightGeneralClippingOnlyContainsEveryRayPair) {
   const PrtFile prt = sharedMap("light_general");
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "generators/cornell_box.h"
@@ -83,9 +84,9 @@ Checked verifyBySampling(const Scene& scene, const VisibilityGraph& g, int rays,
 }
 
 void expectConservative(const Scene& scene, int rays, int segments, uint32_t seed,
-                        BspOptions bsp = {}) {
+                        BspOptions bsp = {}, const PropagationOptions& options = {}) {
   const Subdivision sub = buildSubdivision(scene, bsp);
-  const VisibilityGraph g = computeVisibility(scene, sub);
+  const VisibilityGraph g = computeVisibility(scene, sub, options);
   const Checked c = verifyBySampling(scene, g, rays, segments, seed);
   EXPECT_GT(c.raysToFront, size_t(rays) / 4);  // the sampling is not vacuous
   EXPECT_EQ(c.missingPairs, 0u) << "light leak: a sampled sightline's pair is not listed";
@@ -244,6 +245,44 @@ TEST(PropagationRays, Maze) {
   m.height = 4;
   m.seed = 5;
   expectConservative(generateMaze(m), 20000, 4000, 4);
+}
+
+TEST(PropagationBudget, SearchesOverBudgetAnswerWithSupersets) {
+  // Budgets small enough that most searches stop: every pair listed without them is listed with
+  // them, with at least the same blockers, and the ray check still passes.
+  MazeOptions m;
+  m.width = 4;
+  m.height = 4;
+  m.seed = 5;
+  const Scene scene = generateMaze(m);
+  const Subdivision sub = buildSubdivision(scene);
+  PropagationOptions unlimited, tight;
+  unlimited.cellSequenceBudget = unlimited.patchSequenceBudget = 0;
+  tight.cellSequenceBudget = 3;
+  tight.patchSequenceBudget = 20;
+  const VisibilityGraph exact = computeVisibility(scene, sub, unlimited);
+  const VisibilityGraph loose = computeVisibility(scene, sub, tight);
+  EXPECT_EQ(exact.stats.cellSearchesOverBudget, 0u);
+  EXPECT_EQ(exact.stats.patchSearchesOverBudget, 0u);
+  EXPECT_GT(loose.stats.cellSearchesOverBudget, exact.stats.portals / 4);
+  EXPECT_GT(loose.stats.patchSearchesOverBudget, exact.stats.patches / 4);
+  const auto looseIndex = indexOf(loose);
+  for (const Interaction& in : exact.interactions) {
+    const auto it = looseIndex.find({in.s, in.r});
+    ASSERT_NE(it, looseIndex.end()) << "pair " << in.s << " " << in.r << " lost over budget";
+    EXPECT_TRUE(std::includes(it->second->blockers.begin(), it->second->blockers.end(),
+                              in.blockers.begin(), in.blockers.end()))
+        << "pair " << in.s << " " << in.r;
+  }
+  // Looser, and measurably so (the budgets do bite).
+  auto blockerIds = [](const VisibilityGraph& g) {
+    size_t sum = 0;
+    for (const Interaction& in : g.interactions) sum += in.blockers.size();
+    return sum;
+  };
+  EXPECT_GE(loose.interactions.size(), exact.interactions.size());
+  EXPECT_GT(blockerIds(loose), blockerIds(exact));
+  expectConservative(scene, 20000, 4000, 9, {}, tight);
 }
 
 TEST(Propagation, SameOutputOnOneAndTwoThreads) {
