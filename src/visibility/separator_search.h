@@ -1,7 +1,7 @@
 // Fast search for the separating planes of two convex portals (paper §4.1, Fig. 5): the planes
 // `separatingPlanes` (portal_clipping.h) finds, found with O(edges x vertices) floating-point
 // orientation tests instead of one candidate plane per (edge, vertex) pair, and each confirmed
-// with the same exact test.
+// with the same exact test (separating_plane.h).
 #pragma once
 
 #include <cstddef>

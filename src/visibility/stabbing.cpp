@@ -195,6 +195,102 @@ bool crossesForward(const Segment& line, std::span<const Vec3> w) {
 
 }  // namespace
 
+void PortalSequenceStabber::describe(Level& level, std::span<const Vec3> portal, Vec3& newell,
+                                     bool& degenerate) {
+  level.original.assign(portal.begin(), portal.end());
+  newell = newellNormal(portal);
+  degenerate = isDegenerate(portal, newell, tol_);
+  if (degenerate) ++stats_.degeneratePortals;
+}
+
+StabbingResult PortalSequenceStabber::pushFirst(Level& level, std::span<const Vec3> portal) {
+  Vec3 newell;
+  bool degenerate = false;
+  describe(level, portal, newell, degenerate);
+  // The first portal fixes the LP frame.
+  origin_ = portal.empty() ? Vec3{} : centroidOf(portal);
+  scale_ = tol_.scale;
+  invScale_ = 1.0 / scale_;
+  firstDegenerate_ = degenerate;
+  if (!degenerate) {
+    normal_ = normalize(newell);
+    firstMinOffset_ = minDot(normal_, portal);
+    pivot_ = dominantAxis(normal_);
+  } else {
+    level.lpValid = false;  // no crossing direction to normalise by: nothing is provable
+  }
+  level.source = level.clipped;
+  rows_.clear();
+  if (level.lpValid) appendRows(level.clipped);
+  level.constraintEnd = rows_.size();
+  std::optional<Segment> w;
+  if (level.lpValid) {
+    // The line along the normal through the centre is an LP point (with t lowered to what the
+    // rows allow), and usually a witness: no LP solve is needed to start a sequence.
+    const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
+    level.optimum = LpVector{};
+    level.optimum[0] = normal_[j0] / normal_[pivot_];
+    level.optimum[1] = normal_[j1] / normal_[pivot_];
+    level.optimum[kT] = kStabbingMaxGrazingSlope;
+    level.optimal = false;
+    lowerLazily(level, 0);
+  }
+  if (!degenerate && options_.seekWitness) {
+    const Segment line{origin_, origin_ + normal_ * scale_};
+    if (crossesForward(line, level.original)) w = line;
+  }
+  return accept(level, w);
+}
+
+bool PortalSequenceStabber::clipByEarlierPortals(Level& level, Level& prev) {
+  // The line crosses the first portal's plane once, forward: everything later is in front.
+  if (!firstDegenerate_) {
+    clipInPlace(level.clipped, normal_, firstMinOffset_, tol_.length(), dist_, scratch_);
+  }
+  // Separating planes of (first, previous) portal; needs two distinct portals before this one.
+  if (!level.clipped.empty() && depth_ >= 2) {
+    // Found lazily, an edge at a time, and kept for the siblings: a portal clipped away by
+    // the first few planes needs no more of them.
+    for (size_t k = 0; !level.clipped.empty();) {
+      if (k == prev.separators.size()) {
+        if (prev.separatorCursor.done()) break;
+        appendNextSeparators(prev.source, prev.clipped, prev.separatorCursor, prev.separators);
+        continue;
+      }
+      const ClipPlane& plane = prev.separators[k++];
+      clipInPlace(level.clipped, plane.unitNormal, plane.offset, tol_.length(), dist_, scratch_);
+    }
+  }
+  return !level.clipped.empty();
+}
+
+bool PortalSequenceStabber::clipFirstPortal(Level& level, const Level& prev, const Vec3& newell,
+                                            bool degenerate) {
+  // Symmetrically, the line crosses the new portal's plane forward after crossing the first
+  // portal: the first portal's useful part is behind that plane.
+  if (!degenerate) {
+    const Vec3 n = normalize(newell);
+    clipInPlace(level.source, -n, -maxDot(n, level.original), tol_.length(), dist_, scratch_);
+    if (level.source.empty()) {
+      return false;
+    }
+  }
+  // And the separating planes of (new, previous) portal bound the first portal's useful part
+  // (the same lemma for the reversed line; `vis` calls this the back clip). A smaller first
+  // portal tightens every later clip, then the new portal is clipped once more by it.
+  if (options_.backClip && depth_ >= 2) {
+    const size_t before = level.source.size();
+    if (!clipBySeparatingPlanes(level.clipped, prev.clipped, level.source, tol_)) {
+      return false;
+    }
+    if (level.source != prev.source && level.source.size() + before > 0 &&
+        !clipBySeparatingPlanes(level.source, prev.clipped, level.clipped, tol_)) {
+      return false;
+    }
+  }
+  return true;
+}
+
 StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool mayDefer) {
   ++stats_.tests;
   witness_.reset();
@@ -212,107 +308,22 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   level.basis = SimplexBasis{};
   level.optimal = false;
   level.optimum = LpVector{};
-  // The portal's own data, needed once it is past the clipping (which half the pushes are not).
-  Vec3 newell;
-  bool degenerate = false;
-  auto describe = [&] {
-    level.original.assign(portal.begin(), portal.end());
-    newell = newellNormal(portal);
-    degenerate = isDegenerate(portal, newell, tol_);
-    if (degenerate) ++stats_.degeneratePortals;
-  };
-
-  if (depth_ == 0) {
-    describe();
-    // The first portal fixes the LP frame.
-    origin_ = portal.empty() ? Vec3{} : centroidOf(portal);
-    scale_ = tol_.scale;
-    invScale_ = 1.0 / scale_;
-    firstDegenerate_ = degenerate;
-    if (!degenerate) {
-      normal_ = normalize(newell);
-      firstMinOffset_ = minDot(normal_, portal);
-      pivot_ = dominantAxis(normal_);
-    } else {
-      level.lpValid = false;  // no crossing direction to normalise by: nothing is provable
-    }
-    level.source = level.clipped;
-    rows_.clear();
-    if (level.lpValid) appendRows(level.clipped);
-    level.constraintEnd = rows_.size();
-    std::optional<Segment> w;
-    if (level.lpValid) {
-      // The line along the normal through the centre is an LP point (with t lowered to what the
-      // rows allow), and usually a witness: no LP solve is needed to start a sequence.
-      const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
-      level.optimum = LpVector{};
-      level.optimum[0] = normal_[j0] / normal_[pivot_];
-      level.optimum[1] = normal_[j1] / normal_[pivot_];
-      level.optimum[kT] = kStabbingMaxGrazingSlope;
-      level.optimal = false;
-      lowerLazily(level, 0);
-    }
-    if (!degenerate && options_.seekWitness) {
-      const Segment line{origin_, origin_ + normal_ * scale_};
-      if (crossesForward(line, level.original)) w = line;
-    }
-    return accept(level, w);
-  }
+  if (depth_ == 0) return pushFirst(level, portal);
 
   Level& prev = levels_[depth_ - 1];
   level.lpValid = level.lpValid && prev.lpValid;
-  if (options_.clipBySeparatingPlanes) {
-    // The line crosses the first portal's plane once, forward: everything later is in front.
-    if (!firstDegenerate_) {
-      clipInPlace(level.clipped, normal_, firstMinOffset_, tol_.length(), dist_, scratch_);
-    }
-    // Separating planes of (first, previous) portal; needs two distinct portals before this one.
-    if (!level.clipped.empty() && depth_ >= 2) {
-      // Found lazily, an edge at a time, and kept for the siblings: a portal clipped away by
-      // the first few planes needs no more of them.
-      for (size_t k = 0; !level.clipped.empty();) {
-        if (k == prev.separators.size()) {
-          if (prev.separatorCursor.done()) break;
-          appendNextSeparators(prev.source, prev.clipped, prev.separatorCursor, prev.separators);
-          continue;
-        }
-        const ClipPlane& plane = prev.separators[k++];
-        clipInPlace(level.clipped, plane.unitNormal, plane.offset, tol_.length(), dist_, scratch_);
-      }
-    }
-    if (level.clipped.empty()) {
-      ++stats_.blockedByClipping;
-      return StabbingResult::Blocked;
-    }
+  if (options_.clipBySeparatingPlanes && !clipByEarlierPortals(level, prev)) {
+    ++stats_.blockedByClipping;
+    return StabbingResult::Blocked;
   }
-  describe();
+  // The portal's own data, needed once it is past the clipping (which half the pushes are not).
+  Vec3 newell;
+  bool degenerate = false;
+  describe(level, portal, newell, degenerate);
   level.source.assign(prev.source.begin(), prev.source.end());
-  if (options_.clipBySeparatingPlanes) {
-    // Symmetrically, the line crosses the new portal's plane forward after crossing the first
-    // portal: the first portal's useful part is behind that plane.
-    if (!degenerate) {
-      const Vec3 n = normalize(newell);
-      clipInPlace(level.source, -n, -maxDot(n, level.original), tol_.length(), dist_, scratch_);
-      if (level.source.empty()) {
-        ++stats_.blockedByClipping;
-        return StabbingResult::Blocked;
-      }
-    }
-    // And the separating planes of (new, previous) portal bound the first portal's useful part
-    // (the same lemma for the reversed line; `vis` calls this the back clip). A smaller first
-    // portal tightens every later clip, then the new portal is clipped once more by it.
-    if (options_.backClip && depth_ >= 2) {
-      const size_t before = level.source.size();
-      if (!clipBySeparatingPlanes(level.clipped, prev.clipped, level.source, tol_)) {
-        ++stats_.blockedByClipping;
-        return StabbingResult::Blocked;
-      }
-      if (level.source != prev.source && level.source.size() + before > 0 &&
-          !clipBySeparatingPlanes(level.source, prev.clipped, level.clipped, tol_)) {
-        ++stats_.blockedByClipping;
-        return StabbingResult::Blocked;
-      }
-    }
+  if (options_.clipBySeparatingPlanes && !clipFirstPortal(level, prev, newell, degenerate)) {
+    ++stats_.blockedByClipping;
+    return StabbingResult::Blocked;
   }
 
   // A deferred LP of the previous level is solved now that a portal got through the clipping
