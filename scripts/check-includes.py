@@ -32,14 +32,8 @@ STAGES = [
 
 # Files that live in one folder but belong to another stage. Each entry is printed on every run,
 # so the exception cannot be forgotten.
-KNOWN_EXCEPTIONS = {
-    # src/quake/leaf_pvs.* is a portal-graph PVS engine, a visibility module that still sits in
-    # the input folder quake/: it includes visibility/ (stabbing, might-see) and
-    # visibility/propagation.cpp includes it. Issue #16 item 1 moves it into src/visibility/;
-    # drop this entry then.
-    "quake/leaf_pvs.h": "visibility",
-    "quake/leaf_pvs.cpp": "visibility",
-}
+# None today: the last one, src/quake/leaf_pvs.*, became visibility/cell_pvs.* (issue #16).
+KNOWN_EXCEPTIONS = {}
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 

@@ -8,8 +8,8 @@
 #include <memory>
 
 #include "bsp/subdivision.h"
-#include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
+#include "quake/prt_portal_graph.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_checks.h"
 #include "radiosity/ray_visibility.h"
@@ -17,6 +17,7 @@
 #include "util/fnv_hash.h"
 #include "util/progress_bar.h"
 #include "util/timing.h"
+#include "visibility/cell_pvs.h"
 #include "visibility/propagation.h"
 #include "visibility/verify.h"
 
@@ -241,19 +242,19 @@ void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow&
     row.failures.push_back(fmt::format("PVS: {}", e.what()));
     return;
   }
-  LeafPvsResult pvs;
+  LeafPvs pvs;
   try {
     ProgressBar bar(row.name + ": PVS");
-    LeafPvsOptions lo;
+    CellPvsOptions lo;
     lo.parallel = options.threads != 1;
     lo.progress = watch(bar, budget);
-    pvs = computeLeafPvs(prt, lo);
+    pvs = expandToLeafs(prt, computeCellPvs(portalGraphOf(prt), lo).visibleCells);
   } catch (const BudgetExceeded&) {
     row.notes.push_back(overBudget("PVS", budget));
     return;
   }
   row.pvsSeconds = secondsSince(t0);
-  // Each row sorted and holding its own leaf; the relation symmetric (computeLeafPvs promises
+  // Each row sorted and holding its own leaf; the relation symmetric (computeCellPvs promises
   // both; a broken symmetrisation or expansion would show here).
   std::optional<std::string> error;
   const auto& rows = pvs.visibleLeafs;
@@ -276,7 +277,7 @@ void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow&
     for (uint32_t v : r) h.integer(v);
   }
   row.pvsHash = h.hex();
-  row.pvsLeafs = pvs.leafCount;
+  row.pvsLeafs = prt.leafCount;
   row.pvsMeanLeafs = pvs.meanLeafsVisible;
 }
 

@@ -9,11 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/commands.h"
-#include "quake/leaf_pvs.h"
 #include "quake/prt_file.h"
+#include "quake/prt_portal_graph.h"
 #include "util/input_error.h"
 #include "util/progress_bar.h"
 #include "util/timing.h"
+#include "visibility/cell_pvs.h"
 
 namespace gv::cli {
 
@@ -51,7 +52,7 @@ Action addPvsCommand(CLI::App& app) {
     const auto t0 = Clock::now();
     auto elapsed = [&] { return secondsSince(t0); };
     const PrtFile prt = readPrtFile(s->input);
-    LeafPvsOptions options;
+    CellPvsOptions options;
     options.parallel = !s->serial;
     options.stabbing.useLinearProgram = !s->noLp;
     options.stabbing.backClip = s->backClip;
@@ -60,14 +61,16 @@ Action addPvsCommand(CLI::App& app) {
     if (s->closed) options.stabbing.blockedBelow = -kStabbingLpMargin;
     ProgressBar bar("pvs (directed portals)", !s->quiet && stderrIsTerminal());
     options.progress = bar.callback();
-    const LeafPvsResult pvs = computeLeafPvs(prt, options);
+    // The search runs over the clusters; the file is written per leaf.
+    const CellPvsResult pvs = computeCellPvs(portalGraphOf(prt), options);
     bar.finish();
+    const LeafPvs leafs = expandToLeafs(prt, pvs.visibleCells);
 
     std::FILE* out = std::fopen(s->output.c_str(), "w");
     if (!out) throw InputError(s->output, 0, "cannot write");
     std::string line;
-    for (size_t l = 0; l < pvs.visibleLeafs.size(); ++l) {
-      const auto& row = pvs.visibleLeafs[l];
+    for (size_t l = 0; l < leafs.visibleLeafs.size(); ++l) {
+      const auto& row = leafs.visibleLeafs[l];
       line = fmt::format("{} {}", l, row.size());
       for (uint32_t v : row) fmt::format_to(std::back_inserter(line), " {}", v);
       line += '\n';
@@ -81,11 +84,11 @@ Action addPvsCommand(CLI::App& app) {
       const nlohmann::json j = {{"portals_file", s->input},
                                 {"output", s->output},
                                 {"prt_version", prt.version},
-                                {"leafs", pvs.leafCount},
-                                {"clusters", pvs.clusterCount},
+                                {"leafs", prt.leafCount},
+                                {"clusters", pvs.cellCount},
                                 {"portals", pvs.portalCount},
-                                {"mean_leafs_visible", pvs.meanLeafsVisible},
-                                {"mean_clusters_might_see", pvs.meanClustersMightSee},
+                                {"mean_leafs_visible", leafs.meanLeafsVisible},
+                                {"mean_clusters_might_see", pvs.meanCellsMightSee},
                                 {"sequences_searched", pvs.sequencesSearched},
                                 {"stabbing_tests", st.tests},
                                 {"blocked_by_clipping", st.blockedByClipping},
@@ -108,10 +111,10 @@ Action addPvsCommand(CLI::App& app) {
       fmt::print("{}\n", j.dump(2));
       return 0;
     }
-    fmt::print("PRT{}: leafs {}  clusters {}  portals {}\n", prt.version, pvs.leafCount,
-               pvs.clusterCount, pvs.portalCount);
+    fmt::print("PRT{}: leafs {}  clusters {}  portals {}\n", prt.version, prt.leafCount,
+               pvs.cellCount, pvs.portalCount);
     fmt::print("mean leafs visible {:.1f}  (might-see flood: {:.1f} clusters per cluster)\n",
-               pvs.meanLeafsVisible, pvs.meanClustersMightSee);
+               leafs.meanLeafsVisible, pvs.meanCellsMightSee);
     fmt::print(
         "sequences {}  stabbing tests {}: blocked by clipping {}, by LP {}; "
         "stabbed {}, unresolved (kept) {}\n",

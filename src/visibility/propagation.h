@@ -1,15 +1,16 @@
 // Visibility propagation (paper §4): depth-first searches over portal sequences of the spatial
-// subdivision, pruned by the stabbing test, giving cell-to-cell and patch-to-patch visibility;
-// then blocker lists (paper §5). Output: the conservative VisibilityGraph.
+// subdivision, pruned by the stabbing test, giving cell-to-cell (§4.1, cell_visibility.h) and
+// patch-to-patch visibility (§4.2, patch_search.h); then blocker lists (§5,
+// blocker_detection.h). Output: the conservative VisibilityGraph.
 #pragma once
 
 #include <functional>
-#include <stdexcept>
 
 #include "bsp/subdivision.h"
 #include "scene/scene.h"
 #include "util/timing.h"
 #include "visibility/blocker_lists.h"
+#include "visibility/search_deadline.h"
 #include "visibility/visibility_graph.h"
 
 namespace gv {
@@ -49,11 +50,6 @@ struct PropagationOptions {
   /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget.
   uint64_t cellSequenceBudget = kDefaultCellSequenceBudget;
   uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;
-};
-
-/// Thrown by computeVisibility when PropagationOptions::deadline has passed.
-struct PropagationDeadlineExceeded : std::runtime_error {
-  PropagationDeadlineExceeded() : std::runtime_error("visibility propagation: deadline passed") {}
 };
 
 /// The conservative visibility graph of `scene` over its subdivision:

@@ -14,6 +14,21 @@
 
 namespace gv {
 
+void SequenceHistogram::add(size_t length, bool success) {
+  auto& v = success ? successes : failures;
+  if (successes.size() <= length) successes.resize(length + 1, 0);
+  if (failures.size() <= length) failures.resize(length + 1, 0);
+  ++v[length];
+}
+
+SequenceHistogram& SequenceHistogram::operator+=(const SequenceHistogram& o) {
+  successes.resize(std::max(successes.size(), o.successes.size()), 0);
+  failures.resize(std::max(failures.size(), o.failures.size()), 0);
+  for (size_t i = 0; i < o.successes.size(); ++i) successes[i] += o.successes[i];
+  for (size_t i = 0; i < o.failures.size(); ++i) failures[i] += o.failures[i];
+  return *this;
+}
+
 VisibilityTxtWriter::VisibilityTxtWriter(const std::string& path) : file_(path) {
   file_.append(
       "# globalvis visibility: S R n b1 ... bn (patch ids of patches.obj, 0-based, S < R)\n");

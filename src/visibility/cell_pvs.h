@@ -1,19 +1,21 @@
-// The potentially visible set of a Quake portal file: for every leaf, the leafs some sightline
-// through the portals can reach (paper §4: depth-first search over portal sequences with the
-// stabbing-line test, src/visibility/stabbing.h). Conservative, symmetric and deterministic.
+// The potentially visible set of a portal graph: for every cell, the cells some sightline through
+// the portals can reach (paper §4.1: depth-first search over portal sequences with the
+// stabbing-line test, src/visibility/stabbing.h). Conservative, symmetric and deterministic. Run
+// on Quake portal files by `globalvis pvs` (quake/prt_portal_graph.h converts them) and on the BSP
+// cells by the cell-to-cell stage of `vis` (visibility/cell_visibility.h).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <vector>
 
-#include "quake/prt_file.h"
+#include "geometry/portal_graph.h"
 #include "visibility/cell_set.h"
 #include "visibility/stabbing.h"
 
 namespace gv {
 
-/// Edge clearance a leaf-PVS sightline needs (StabbingOptions::blockedBelow): its Plücker side with
+/// Edge clearance a PVS sightline needs (StabbingOptions::blockedBelow): its Plücker side with
 /// every portal edge over the edge's length, in units of the map's diagonal, for the line scaled
 /// to cross the first portal at unit speed along its normal (about the line's distance from the
 /// edge's line times the sine of their angle). Lines that only touch portal edges are not kept.
@@ -37,7 +39,7 @@ inline StabbingOptions pvsStabbingOptions() {
   return o;
 }
 
-struct LeafPvsOptions {
+struct CellPvsOptions {
   StabbingOptions stabbing = pvsStabbingOptions();
   /// Run the searches on the threads of the current oneTBB arena; the result is identical to the
   /// serial run (and to a run on any number of threads).
@@ -47,7 +49,7 @@ struct LeafPvsOptions {
   std::function<void(size_t, size_t)> progress;
   /// Find every cell pair from both cells' searches and keep it only if both found it: the
   /// tightest PVS, and slower. Off (the default): a search does not look for the cells whose
-  /// own searches are all finished (their answer for the pair stands); see computeLeafPvs.
+  /// own searches are all finished (their answer for the pair stands); see computeCellPvs.
   bool bothSides = false;
   /// A search that pushes more portal sequences than this (0: no limit) stops and answers with
   /// every cell it might have reached (its might-see set after the reverse test): conservative,
@@ -56,38 +58,34 @@ struct LeafPvsOptions {
   uint64_t maxSequencesPerSearch = 0;
 };
 
-struct LeafPvsResult {
-  /// For each leaf of the file, the 0-based ids of the leafs it may see, ascending, itself
-  /// included.
-  std::vector<std::vector<uint32_t>> visibleLeafs;
-  size_t leafCount = 0, clusterCount = 0, portalCount = 0;
-  /// Mean of visibleLeafs[i].size() over leafs: `vis`'s "average leafs visible".
-  double meanLeafsVisible = 0;
-  /// Cluster pairs (ordered) found from one side only and dropped by symmetrisation.
+struct CellPvsResult {
+  /// For each cell of the graph, the cells it may see, ascending, itself included.
+  std::vector<std::vector<uint32_t>> visibleCells;
+  size_t cellCount = 0, portalCount = 0;
+  /// Cell pairs (ordered) found from one side only and dropped by symmetrisation.
   uint64_t oneSidedPairsDropped = 0;
-  /// Cluster pairs (ordered, either answer) decided by one side's searches alone, because the
+  /// Cell pairs (ordered, either answer) decided by one side's searches alone, because the
   /// other side's searches came later and did not look for it (not with `bothSides`).
   uint64_t settledPairs = 0;
-  /// Cluster pairs the might-see flood allows (before stabbing), for comparison.
-  double meanClustersMightSee = 0;
+  /// Mean over cells of the cells the might-see flood allows (before stabbing), for comparison.
+  double meanCellsMightSee = 0;
   StabbingStats stabbing;
   uint64_t sequencesSearched = 0;  ///< portal sequences pushed by the searches
-  /// Directed-portal searches stopped by LeafPvsOptions::maxSequencesPerSearch (their answer is
+  /// Directed-portal searches stopped by CellPvsOptions::maxSequencesPerSearch (their answer is
   /// their might-see set).
   uint64_t searchesOverBudget = 0;
   /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
   std::vector<uint64_t> successesByLength, failuresByLength;
-  /// Per directed portal (2i: portal i from clusterA into clusterB; 2i+1: the way back), the
-  /// clusters reached by the stabbable sequences it starts (before symmetrisation; without
-  /// `bothSides`, with the settled clusters its search might have reached added): a superset of
+  /// Per directed portal (2i: portal i from back into front; 2i+1: the way back), the
+  /// cells reached by the stabbable sequences it starts (before symmetrisation; without
+  /// `bothSides`, with the settled cells its search might have reached added): a superset of
   /// where any sightline continuing through it can go.
   std::vector<CellSet> portalFlow;
   double floodSeconds = 0, searchSeconds = 0;
 };
 
-/// Computes the PVS. Clusters (PRT2) or leafs (PRT1) are the convex cells; a cell sees itself and
-/// every cell reached by a portal sequence that admits a stabbing line (through open portals with
-/// the default options: see kPvsEdgeClearance). Method:
+/// Computes the PVS. A cell sees itself and every cell reached by a portal sequence that admits a
+/// stabbing line (through open portals with the default options: see kPvsEdgeClearance). Method:
 ///  1. might-see flood per directed portal (cheap plane tests, `vis -fast`-like);
 ///  2. from each directed portal, depth-first search over the portal sequences it starts (at each
 ///     cell, the portals into cells not yet visible first: the same cells are reached in any
@@ -108,8 +106,7 @@ struct LeafPvsResult {
 ///     maps this costs 0.1-0.6 % more leafs visible and saves 3-31 % of the time;
 ///  3. symmetrisation: a pair is kept only if found from both sides (each side's search is
 ///     conservative and true visibility is symmetric, so the intersection still contains it),
-///     or, for a pair settled in step 2, if the side that searched for it found it;
-///  4. PRT2: cluster visibility expanded to the leafs of the clusters.
-LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options = {});
+///     or, for a pair settled in step 2, if the side that searched for it found it.
+CellPvsResult computeCellPvs(const PortalGraph& graph, const CellPvsOptions& options = {});
 
 }  // namespace gv

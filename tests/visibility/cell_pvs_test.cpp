@@ -1,7 +1,8 @@
-// Tests of the leaf PVS of Quake portal files: a hand-made corridor with known facts, and the
-// small shared real maps checked against an independent ray walker (every pair of cells a
-// sampled ray passes through must be in the PVS), symmetry, determinism, and vis's numbers.
-#include "quake/leaf_pvs.h"
+// Tests of the cell PVS, run on Quake portal files as `globalvis pvs` runs it (over the clusters,
+// expanded to leafs): a hand-made corridor with known facts, and the small shared real maps
+// checked against an independent ray walker (every pair of cells a sampled ray passes through
+// must be in the PVS), symmetry, determinism, and vis's numbers.
+#include "visibility/cell_pvs.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -13,11 +14,24 @@
 #include <stdexcept>
 
 #include "geometry/tolerance.h"
+#include "quake/prt_file.h"
+#include "quake/prt_portal_graph.h"
 #include "support/oracle_math.h"
 #include "visibility/portal_clipping.h"
 
 namespace gv {
 namespace {
+
+// The PVS of a .prt file as `globalvis pvs` computes it: the search's result over the clusters
+// and its expansion to leafs.
+struct LeafPvsResult : CellPvsResult, LeafPvs {};
+
+LeafPvsResult computeLeafPvs(const PrtFile& prt, const CellPvsOptions& options = {}) {
+  LeafPvsResult result;
+  static_cast<CellPvsResult&>(result) = computeCellPvs(portalGraphOf(prt), options);
+  static_cast<LeafPvs&>(result) = expandToLeafs(prt, result.visibleCells);
+  return result;
+}
 
 bool sees(const LeafPvsResult& pvs, size_t a, size_t b) {
   const auto& row = pvs.visibleLeafs[a];
@@ -51,11 +65,11 @@ const char* kCorridor =
     "4 3 4 (3 1 0) (3 1 1) (4 1 1) (4 1 0)\n"
     "4 4 5 (3 2 0) (3 2 1) (4 2 1) (4 2 0)\n";
 
-TEST(LeafPvsHand, CorridorAroundACorner) {
+TEST(CellPvsHand, CorridorAroundACorner) {
   std::istringstream in(kCorridor);
   const PrtFile prt = parsePrt(in, "corridor.prt");
   for (bool useLp : {true, false}) {
-    LeafPvsOptions options;
+    CellPvsOptions options;
     options.stabbing.useLinearProgram = useLp;
     const LeafPvsResult pvs = computeLeafPvs(prt, options);
     expectSymmetricWithSelf(pvs);
@@ -89,13 +103,13 @@ std::string longCorridor(int n, int m) {
   return out.str();
 }
 
-TEST(LeafPvsHand, LongCorridorAroundACornerInBothModes) {
+TEST(CellPvsHand, LongCorridorAroundACornerInBothModes) {
   const int n = 12, m = 12;
   std::istringstream in(longCorridor(n, m));
   const PrtFile prt = parsePrt(in, "long-corridor.prt");
   ASSERT_EQ(prt.portals.size(), static_cast<size_t>(n + m - 1));
   for (bool bothSides : {false, true}) {
-    LeafPvsOptions options;
+    CellPvsOptions options;
     options.bothSides = bothSides;
     const LeafPvsResult pvs = computeLeafPvs(prt, options);
     expectSymmetricWithSelf(pvs);
@@ -242,7 +256,7 @@ PrtFile sharedMap(const std::string& name) {
   return readPrtFile(path.string());
 }
 
-TEST(LeafPvsRealMap, QbspFeaturesContainsEveryRayPairAndMatchesVis) {
+TEST(CellPvsRealMap, QbspFeaturesContainsEveryRayPairAndMatchesVis) {
   const PrtFile prt = sharedMap("qbspfeatures");
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   const LeafPvsResult pvs = computeLeafPvs(prt);
@@ -256,16 +270,16 @@ TEST(LeafPvsRealMap, QbspFeaturesContainsEveryRayPairAndMatchesVis) {
                 (static_cast<double>(prt.leafCount) + 1),
             154 + 0.05);
   // Serial and parallel give identical output.
-  LeafPvsOptions serial;
+  CellPvsOptions serial;
   serial.parallel = false;
   EXPECT_EQ(computeLeafPvs(prt, serial).visibleLeafs, pvs.visibleLeafs);
 }
 
-TEST(LeafPvsRealMap, SearchesOverBudgetKeepEveryPairAndStayDeterministic) {
+TEST(CellPvsRealMap, SearchesOverBudgetKeepEveryPairAndStayDeterministic) {
   const PrtFile prt = sharedMap("qbspfeatures");
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   const LeafPvsResult full = computeLeafPvs(prt);
-  LeafPvsOptions budget;
+  CellPvsOptions budget;
   budget.maxSequencesPerSearch = 4;
   const LeafPvsResult cut = computeLeafPvs(prt, budget);
   EXPECT_EQ(full.searchesOverBudget, 0u);
@@ -278,17 +292,17 @@ TEST(LeafPvsRealMap, SearchesOverBudgetKeepEveryPairAndStayDeterministic) {
         << "leaf " << l;
   EXPECT_GT(cut.meanLeafsVisible, full.meanLeafsVisible);
   EXPECT_GT(checkAgainstRays(prt, cut, 20000, 5), 50u);
-  LeafPvsOptions serial = budget;
+  CellPvsOptions serial = budget;
   serial.parallel = false;
   EXPECT_EQ(computeLeafPvs(prt, serial).visibleLeafs, cut.visibleLeafs);
 }
 
-TEST(LeafPvsRealMap, LightGeneralClippingOnlyContainsEveryRayPair) {
+TEST(CellPvsRealMap, LightGeneralClippingOnlyContainsEveryRayPair) {
   const PrtFile prt = sharedMap("light_general");
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   // The clipping-only mode (fast enough for the sanitizer build); the full mode is in the
   // benchmark table.
-  LeafPvsOptions options;
+  CellPvsOptions options;
   options.stabbing.useLinearProgram = false;
   const LeafPvsResult pvs = computeLeafPvs(prt, options);
   expectSymmetricWithSelf(pvs);
@@ -310,7 +324,7 @@ TEST(LeafPvsRealMap, LightGeneralClippingOnlyContainsEveryRayPair) {
   EXPECT_GE(pvs.meanLeafsVisible, full.meanLeafsVisible);
 }
 
-TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnesses) {
+TEST(CellPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnesses) {
   const PrtFile prt = sharedMap("light_general");
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   // The default (LP, reverse might-see pruning, no witness search) against the ray walker.
@@ -325,14 +339,14 @@ TEST(LeafPvsRealMap, LightGeneralFullModeContainsEveryRayPairWithOrWithoutWitnes
   EXPECT_EQ(pvs.stabbing.stabbed, 0u);  // no witness search by default
   EXPECT_GT(pvs.settledPairs, 0u);
   // Both sides searched for every pair: the tightest PVS, also containing every ray pair.
-  LeafPvsOptions both;
+  CellPvsOptions both;
   both.bothSides = true;
   const LeafPvsResult tight = computeLeafPvs(prt, both);
   expectSymmetricWithSelf(tight);
   EXPECT_GT(checkAgainstRays(prt, tight, 40000, 3), 500u);
   EXPECT_EQ(tight.settledPairs, 0u);
   // Witness lines only tell Stabbed from Unresolved: the pruning, hence the PVS, is the same.
-  LeafPvsOptions withWitness;
+  CellPvsOptions withWitness;
   withWitness.stabbing.seekWitness = true;
   const LeafPvsResult w = computeLeafPvs(prt, withWitness);
   EXPECT_GT(w.stabbing.stabbed, 0u);
@@ -345,17 +359,17 @@ std::vector<size_t> members(const CellSet& set) {
   return m;
 }
 
-TEST(LeafPvsRealMap, LightGeneralSameOutputOnAnyNumberOfThreadsAndProgressMayStopIt) {
+TEST(CellPvsRealMap, LightGeneralSameOutputOnAnyNumberOfThreadsAndProgressMayStopIt) {
   const PrtFile prt = sharedMap("light_general");
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
-  LeafPvsOptions serial;
+  CellPvsOptions serial;
   serial.parallel = false;
   const LeafPvsResult one = computeLeafPvs(prt, serial);
   for (int threads : {2, 3, 5}) {
     tbb::task_arena arena(threads);
     LeafPvsResult r;
     size_t last = 0, total = 0;
-    LeafPvsOptions options;
+    CellPvsOptions options;
     options.progress = [&](size_t done, size_t n) {
       EXPECT_GT(done, last);
       last = done, total = n;
@@ -389,7 +403,7 @@ void expectContainsEveryRayPair(const std::string& map, uint64_t seed) {
   ::testing::Test::RecordProperty("mean_leafs_visible", std::to_string(pvs.meanLeafsVisible));
 }
 
-TEST(LeafPvsRealMap, DISABLED_E1M1ContainsEveryRayPair) {
+TEST(CellPvsRealMap, DISABLED_E1M1ContainsEveryRayPair) {
   expectContainsEveryRayPair("E1M1-edited-ents", 4);
 }
 
@@ -402,7 +416,7 @@ void expectDroppedPairsUnreached(const std::string& name) {
   const PrtFile prt = sharedMap(name);
   if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
   const LeafPvsResult open = computeLeafPvs(prt);
-  LeafPvsOptions closedOptions;
+  CellPvsOptions closedOptions;
   closedOptions.stabbing.blockedBelow = -kStabbingLpMargin;
   const LeafPvsResult closed = computeLeafPvs(prt, closedOptions);
   EXPECT_LT(open.meanLeafsVisible, closed.meanLeafsVisible);
@@ -441,20 +455,20 @@ void expectDroppedPairsUnreached(const std::string& name) {
   ::testing::Test::RecordProperty("rays", std::to_string(rays));
 }
 
-TEST(LeafPvsRealMap, DISABLED_E1M1OpenPortalsDropNoRayVisiblePair) {
+TEST(CellPvsRealMap, DISABLED_E1M1OpenPortalsDropNoRayVisiblePair) {
   expectDroppedPairsUnreached("E1M1-edited-ents");
 }
 
-TEST(LeafPvsRealMap, DISABLED_E3m4OpenPortalsDropNoRayVisiblePair) {
+TEST(CellPvsRealMap, DISABLED_E3m4OpenPortalsDropNoRayVisiblePair) {
   expectDroppedPairsUnreached("e3m4");
 }
 
-TEST(LeafPvsRealMap, DISABLED_E3m4ContainsEveryRayPair) {
+TEST(CellPvsRealMap, DISABLED_E3m4ContainsEveryRayPair) {
   expectContainsEveryRayPair("e3m4", 5);
 }
 
 // The map where settled cells save the most (about 100 s on 2 cores): run by hand.
-TEST(LeafPvsRealMap, DISABLED_LqE1m8ContainsEveryRayPair) {
+TEST(CellPvsRealMap, DISABLED_LqE1m8ContainsEveryRayPair) {
   expectContainsEveryRayPair("lq_e1m8", 6);
 }
 

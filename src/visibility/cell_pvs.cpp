@@ -1,6 +1,6 @@
-// Leaf PVS of a Quake portal file by depth-first search over portal sequences with the stabbing
-// test (paper §4, §4.1). See leaf_pvs.h for the method and its guarantees.
-#include "quake/leaf_pvs.h"
+// The PVS of a portal graph by depth-first search over portal sequences with the stabbing test
+// (paper §4, §4.1). See cell_pvs.h for the method and its guarantees.
+#include "visibility/cell_pvs.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -27,7 +27,7 @@ namespace {
 // enough that a thread seldom waits for a long search of another.
 constexpr size_t kResultLag = 16;
 
-// A portal crossed in one direction: 2i is portal i from clusterA to clusterB (file winding), 2i+1
+// A portal crossed in one direction: 2i is portal i from back to front (its winding), 2i+1
 // the way back (reversed winding), so that the winding is always counter-clockwise seen from the
 // cell entered (the stabber's convention).
 struct DirectedPortal {
@@ -43,20 +43,20 @@ struct Graph {
   Tolerance tol;
 };
 
-Graph buildGraph(const PrtFile& prt) {
+Graph buildGraph(const PortalGraph& graph) {
   Graph g;
-  g.outgoing.resize(prt.clusterCount);
+  g.outgoing.resize(graph.cellCount);
   Aabb box;
-  for (const PrtPortal& p : prt.portals)
+  for (const GraphPortal& p : graph.portals)
     for (const Vec3& v : p.winding) box.add(v);
   g.tol = Tolerance::forBounds(box);
-  g.portals.reserve(2 * prt.portals.size());
-  for (const PrtPortal& p : prt.portals) {
+  g.portals.reserve(2 * graph.portals.size());
+  for (const GraphPortal& p : graph.portals) {
     for (int dir = 0; dir < 2; ++dir) {
       DirectedPortal d;
       d.winding = p.winding;
-      d.from = dir == 0 ? p.clusterA : p.clusterB;
-      d.to = dir == 0 ? p.clusterB : p.clusterA;
+      d.from = static_cast<int>(dir == 0 ? p.back : p.front);
+      d.to = static_cast<int>(dir == 0 ? p.front : p.back);
       if (dir == 1) std::reverse(d.winding.begin(), d.winding.end());
       const Vec3 n = newellNormal(d.winding);
       d.normal = length(n) > 0 ? normalize(n) : Vec3{};
@@ -87,6 +87,12 @@ bool mayFollow(const DirectedPortal& q, const DirectedPortal& r, double slack) {
 
 // The cells a line through directed portal q may reach: flood from the cell it enters through
 // portals that may follow q (paper §4's adjacency graph, pruned by q's plane as `vis` does).
+// visibility/might_see.h floods the same way over a Subdivision for the per-cell fallback of
+// computeVisibility, and both stay: they differ in slack (the length tolerance here, the plane
+// offset there), in precision (slabs of normal·x from the origin here, distances from a portal
+// vertex there) and in never re-entering the source cell here. Any of those changes the sets,
+// and the sets reach the output (the search order, and the answer of a search over budget), so
+// one flood for both would change `pvs` or `vis` output.
 void floodFrom(const Graph& g, int qi, CellSet& out, std::vector<int>& stack) {
   const DirectedPortal& q = g.portals[qi];
   out.clear();
@@ -151,7 +157,7 @@ struct SearchInputs {
   const std::vector<CellSet>& portalVis;
   const std::vector<size_t>& rank;  // per directed portal, its place in the search order
   // Per cell, the rank from which on all its portals' results are usable (a search whose
-  // results bound is at least this settles the cell); empty with LeafPvsOptions::bothSides.
+  // results bound is at least this settles the cell); empty with CellPvsOptions::bothSides.
   const std::vector<size_t>& cellDoneAt;
 };
 
@@ -170,7 +176,7 @@ struct Searcher {
 
   const Graph& g;
   const SearchInputs& inputs;
-  const uint64_t maxSequences;  // per search; 0: no limit (LeafPvsOptions::maxSequencesPerSearch)
+  const uint64_t maxSequences;  // per search; 0: no limit (CellPvsOptions::maxSequencesPerSearch)
   uint64_t budgetEnd = 0;       // the search stops once `sequences` passes this
   bool overBudget = false;      // the current search stopped: its answer is frames[1]
   uint64_t searchesOverBudget = 0;
@@ -312,80 +318,83 @@ struct Searcher {
   }
 };
 
-}  // namespace
-
-LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) {
-  LeafPvsResult result;
-  result.leafCount = prt.leafCount;
-  result.clusterCount = prt.clusterCount;
-  result.portalCount = prt.portals.size();
-  const size_t cells = prt.clusterCount;
-  const Graph g = buildGraph(prt);
-
-  // 1. Might-see flood per directed portal.
-  const auto t0 = Clock::now();
+// Step 1: the might-see flood of every directed portal, and the mean might-see set of a cell
+// (the union over its portals, plus itself) for the statistics.
+std::vector<CellSet> floodAll(const Graph& g, size_t cells, bool parallel, double& meanMightSee) {
   std::vector<CellSet> flood(g.portals.size(), CellSet(cells));
   auto floodRange = [&](size_t begin, size_t end) {
     std::vector<int> stack;
     for (size_t i = begin; i < end; ++i) floodFrom(g, static_cast<int>(i), flood[i], stack);
   };
-  if (options.parallel) {
+  if (parallel) {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, g.portals.size(), 16),
                       [&](const tbb::blocked_range<size_t>& r) { floodRange(r.begin(), r.end()); });
   } else {
     floodRange(0, g.portals.size());
   }
-  {
-    // Might-see per cell: the union over its portals (plus itself), for the statistics.
-    double sum = 0;
-    CellSet u(cells);
-    for (size_t c = 0; c < cells; ++c) {
-      u.clear();
-      u.insert(c);
-      for (int pi : g.outgoing[c]) u.unite(flood[pi]);
-      sum += static_cast<double>(u.count());
-    }
-    result.meanClustersMightSee = cells ? sum / static_cast<double>(cells) : 0;
+  double sum = 0;
+  CellSet u(cells);
+  for (size_t c = 0; c < cells; ++c) {
+    u.clear();
+    u.insert(c);
+    for (int pi : g.outgoing[c]) u.unite(flood[pi]);
+    sum += static_cast<double>(u.count());
   }
-  result.floodSeconds = secondsSince(t0);
+  meanMightSee = cells ? sum / static_cast<double>(cells) : 0;
+  return flood;
+}
 
-  // 2. Depth-first search from every directed portal in increasing order of might-see size
-  //    (`vis`'s order), each using the finished results of the searches ranked kResultLag or more
-  //    before it (SearchInputs). Threads take the next rank from a shared counter and wait (rarely:
-  //    only when one search outlasts kResultLag of the others) until the results it may use are
-  //    done; no barrier between groups of searches, so threads idle only for such waits.
-  const auto t1 = Clock::now();
+// The order of the searches and what it settles (SearchInputs).
+struct SearchPlan {
+  std::vector<int> order;    // directed portals by rank
+  std::vector<size_t> rank;  // per directed portal, its place in `order`
+  // A cell is settled for the searches that may use all its portals' results (cellDoneAt: the
+  // rank from which on; empty with bothSides); lastUsable: the latest results bound among the
+  // searches of its portals.
+  std::vector<size_t> cellDoneAt, lastUsable;
+};
+
+SearchPlan planSearches(const Graph& g, const std::vector<CellSet>& flood, size_t cells,
+                        bool bothSides) {
+  SearchPlan plan;
   const size_t np = g.portals.size();
   std::vector<size_t> floodSize(np);
   for (size_t i = 0; i < np; ++i) floodSize[i] = flood[i].count();
-  const std::vector<int> order = searchOrder(g, floodSize, !options.bothSides);
-  std::vector<size_t> rank(np);
-  for (size_t k = 0; k < np; ++k) rank[order[k]] = k;
-  // A cell is settled for the searches that may use all its portals' results; lastUsable: the
-  // latest results bound among the searches of its portals.
-  std::vector<size_t> cellDoneAt, lastUsable(cells, 0);
-  if (!options.bothSides) {
-    cellDoneAt.assign(cells, SIZE_MAX);  // a cell without portals is never settled
+  plan.order = searchOrder(g, floodSize, !bothSides);
+  plan.rank.resize(np);
+  for (size_t k = 0; k < np; ++k) plan.rank[plan.order[k]] = k;
+  plan.lastUsable.assign(cells, 0);
+  if (!bothSides) {
+    plan.cellDoneAt.assign(cells, SIZE_MAX);  // a cell without portals is never settled
     for (size_t c = 0; c < cells; ++c) {
       for (int pi : g.outgoing[c]) {
-        const size_t after = rank[pi] + 1;
-        cellDoneAt[c] = cellDoneAt[c] == SIZE_MAX ? after : std::max(cellDoneAt[c], after);
-        lastUsable[c] = std::max(lastUsable[c], usableBound(rank[pi]));
+        const size_t after = plan.rank[pi] + 1;
+        size_t& doneAt = plan.cellDoneAt[c];
+        doneAt = doneAt == SIZE_MAX ? after : std::max(doneAt, after);
+        plan.lastUsable[c] = std::max(plan.lastUsable[c], usableBound(plan.rank[pi]));
       }
     }
   }
-  // What each search found; without settled cells that is portalVis itself (not kept twice:
-  // `vis` runs this on cell graphs whose sets take hundreds of MiB).
-  std::vector<CellSet> portalVis(np, CellSet(cells));
-  std::vector<CellSet> portalFound(options.bothSides ? 0 : np, CellSet(cells));
-  const std::vector<CellSet>& found = options.bothSides ? portalVis : portalFound;
-  const SearchInputs inputs{g, flood, portalVis, rank, cellDoneAt};
+  return plan;
+}
+
+// Step 2: every directed portal's search, in rank order, each using the finished results of the
+// searches ranked kResultLag or more before it (SearchInputs). Threads take the next rank from a
+// shared counter and wait (rarely: only when one search outlasts kResultLag of the others) until
+// the results it may use are done; no barrier between groups of searches, so threads idle only
+// for such waits. Fills portalVis (and portalFound without bothSides) and the statistics.
+void runSearches(const Graph& g, const std::vector<CellSet>& flood, const SearchPlan& plan,
+                 size_t cells, const CellPvsOptions& options, std::vector<CellSet>& portalVis,
+                 std::vector<CellSet>& portalFound, CellPvsResult& result) {
+  const size_t np = g.portals.size();
+  const SearchInputs inputs{g, flood, portalVis, plan.rank, plan.cellDoneAt};
   const size_t threads =
       options.parallel ? static_cast<size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))
                        : 1;
   std::vector<Searcher> searchers;
   searchers.reserve(threads);
-  for (size_t t = 0; t < threads; ++t) searchers.emplace_back(inputs, cells, options.stabbing, options.maxSequencesPerSearch);
+  for (size_t t = 0; t < threads; ++t)
+    searchers.emplace_back(inputs, cells, options.stabbing, options.maxSequencesPerSearch);
   std::atomic<size_t> next{0}, finished{0};
   std::atomic<bool> stop{false};
   size_t reported = 0;  // the last count given to options.progress (from the calling thread)
@@ -409,7 +418,7 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
           std::this_thread::yield();
         }
       }
-      const int pi = order[k];
+      const int pi = plan.order[k];
       s.searchFrom(pi, usable);
       if (options.bothSides) {
         portalVis[pi] = s.found;
@@ -458,22 +467,19 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
       for (size_t k = 0; k < from->size(); ++k) (*to)[k] += (*from)[k];
     }
   }
-  // A cell sees itself and what its portals found.
-  std::vector<CellSet> seen(cells, CellSet(cells));
-  for (size_t c = 0; c < cells; ++c) {
-    seen[c].insert(c);
-    for (int pi : g.outgoing[c]) seen[c].unite(found[pi]);
-  }
-  result.searchSeconds = secondsSince(t1);
+}
 
-  // 3. Symmetrise: keep a pair only if each side's (conservative) search found the other; a
-  //    pair one side settled (b settled in a search of a's: then every search of b's came
-  //    earlier, with a not settled) stands on the other side's answer. Both cannot hold: each
-  //    needs the other cell's last portal searched more than kResultLag places earlier.
-  std::vector<std::vector<int>> visibleCells(cells);
+// Step 3: symmetrise: keep a pair only if each side's (conservative) search found the other; a
+// pair one side settled (b settled in a search of a's: then every search of b's came earlier,
+// with a not settled) stands on the other side's answer. Both cannot hold: each needs the other
+// cell's last portal searched more than kResultLag places earlier. `seen`: per cell, itself and
+// what its portals found.
+void symmetrise(const std::vector<CellSet>& seen, const SearchPlan& plan, CellPvsResult& result) {
+  const size_t cells = seen.size();
   auto settledIn = [&](size_t a, size_t b) {
-    return !cellDoneAt.empty() && cellDoneAt[b] <= lastUsable[a];
+    return !plan.cellDoneAt.empty() && plan.cellDoneAt[b] <= plan.lastUsable[a];
   };
+  result.visibleCells.assign(cells, {});
   for (size_t a = 0; a < cells; ++a) {
     for (size_t b = 0; b < cells; ++b) {
       bool keep;
@@ -487,27 +493,45 @@ LeafPvsResult computeLeafPvs(const PrtFile& prt, const LeafPvsOptions& options) 
         keep = seen[a].contains(b) && seen[b].contains(a);
       }
       if (keep) {
-        visibleCells[a].push_back(static_cast<int>(b));
+        result.visibleCells[a].push_back(static_cast<uint32_t>(b));
       } else if (seen[a].contains(b)) {
         ++result.oneSidedPairsDropped;
       }
     }
   }
+}
 
-  // 4. Expand clusters to leafs.
-  std::vector<std::vector<uint32_t>> clusterRow(cells);
+}  // namespace
+
+CellPvsResult computeCellPvs(const PortalGraph& graph, const CellPvsOptions& options) {
+  CellPvsResult result;
+  result.cellCount = graph.cellCount;
+  result.portalCount = graph.portals.size();
+  const size_t cells = graph.cellCount;
+  const Graph g = buildGraph(graph);
+
+  const auto t0 = Clock::now();
+  const std::vector<CellSet> flood = floodAll(g, cells, options.parallel, result.meanCellsMightSee);
+  result.floodSeconds = secondsSince(t0);
+
+  const auto t1 = Clock::now();
+  const size_t np = g.portals.size();
+  const SearchPlan plan = planSearches(g, flood, cells, options.bothSides);
+  // What each search found; without settled cells that is portalVis itself (not kept twice:
+  // `vis` runs this on cell graphs whose sets take hundreds of MiB).
+  std::vector<CellSet> portalVis(np, CellSet(cells));
+  std::vector<CellSet> portalFound(options.bothSides ? 0 : np, CellSet(cells));
+  runSearches(g, flood, plan, cells, options, portalVis, portalFound, result);
+  const std::vector<CellSet>& found = options.bothSides ? portalVis : portalFound;
+  // A cell sees itself and what its portals found.
+  std::vector<CellSet> seen(cells, CellSet(cells));
   for (size_t c = 0; c < cells; ++c) {
-    for (int d : visibleCells[c])
-      for (int leaf : prt.clusterLeafs[d]) clusterRow[c].push_back(static_cast<uint32_t>(leaf));
-    std::sort(clusterRow[c].begin(), clusterRow[c].end());
+    seen[c].insert(c);
+    for (int pi : g.outgoing[c]) seen[c].unite(found[pi]);
   }
-  result.visibleLeafs.resize(prt.leafCount);
-  double total = 0;
-  for (size_t l = 0; l < prt.leafCount; ++l) {
-    result.visibleLeafs[l] = clusterRow[prt.leafCluster[l]];
-    total += static_cast<double>(result.visibleLeafs[l].size());
-  }
-  result.meanLeafsVisible = prt.leafCount ? total / static_cast<double>(prt.leafCount) : 0;
+  result.searchSeconds = secondsSince(t1);
+
+  symmetrise(seen, plan, result);
   result.portalFlow = std::move(portalVis);
   return result;
 }

@@ -1,0 +1,356 @@
+// Blocker detection (paper §5): interactions and their blocker lists from the patch searches'
+// seen lists, built in parallel and handed on in order (see blocker_detection.h).
+#include "visibility/blocker_detection.h"
+
+#include <tbb/concurrent_queue.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <memory>
+#include <span>
+#include <utility>
+
+#include "util/timing.h"
+#include "visibility/blocker_lists.h"
+#include "visibility/hull_overlap.h"
+#include "visibility/patch_grid.h"
+#include "visibility/search_deadline.h"
+
+namespace gv {
+namespace {
+
+/// Blocker lists are built for this many entries of the sources' seen lists at a time (one
+/// pipeline token; a source's pairs come from its entries): small enough that the chunks in
+/// flight are little memory (at most this many pairs each), large enough to amortise the
+/// hand-over.
+constexpr uint64_t kSeenPerChunk = 1024;
+/// Chunks in flight per thread: room for threads to work ahead of a slow chunk that holds up
+/// the in-order hand-over.
+constexpr size_t kChunksInFlightPerThread = 3;
+/// Flags of the blocker stage's candidates: seen from the pair's S, from its T.
+constexpr uint8_t kFromS = 1, kFromT = 2;
+/// A membership flag costs about this fraction of a binary search in seen(T) (both per
+/// candidate; flags need a pass over seen(T) to set and one to clear).
+constexpr size_t kFlagsPerSearch = 4;
+
+/// A chunk whose id array grew past this (16 MiB) gives it back after the hand-over instead of
+/// keeping it for reuse.
+constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
+
+/// Some vertex of `b` strictly in front of `a`'s plane, and vice versa: only such pairs can
+/// exchange light front to front.
+bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps) {
+  auto someInFront = [eps](const ConvexPolygon& of, const ConvexPolygon& plane) {
+    for (const Vec3& v : of.vertices)
+      if (plane.plane.distance(v) > eps) return true;
+    return false;
+  };
+  return someInFront(b, a) && someInFront(a, b);
+}
+
+/// Sorts distinct ids in [0, 64 bits.size()): by std::sort when there are few, else by setting
+/// their bits in `bits` (all clear on entry and on return) and reading them back in order, which
+/// is cheaper once the ids are more than a sparse sample of the range.
+void sortIds(std::span<uint32_t> ids, std::vector<uint64_t>& bits) {
+  if (ids.size() < 64 || double(ids.size()) * std::log2(double(ids.size())) < double(bits.size())) {
+    std::sort(ids.begin(), ids.end());
+    return;
+  }
+  uint32_t lo = UINT32_MAX, hi = 0;
+  for (uint32_t id : ids) {
+    bits[id >> 6] |= uint64_t{1} << (id & 63);
+    lo = std::min(lo, id);
+    hi = std::max(hi, id);
+  }
+  size_t k = 0;
+  for (size_t word = lo >> 6; word <= (hi >> 6); ++word) {
+    for (uint64_t b = bits[word]; b; b &= b - 1)
+      ids[k++] = static_cast<uint32_t>(word * 64 + size_t(std::countr_zero(b)));
+    bits[word] = 0;
+  }
+}
+
+/// One thread's scratch memory of the blocker stage.
+struct BlockerWorker {
+  std::vector<uint8_t> seen;       ///< per patch: kFromS (in seen(S)) | kFromT (in seen(T))
+  std::vector<uint32_t> gathered;  ///< room for every patch: PatchGrid::gatherInto's output
+  std::vector<uint64_t> bits;      ///< one per patch, all clear between calls of sortIds
+};
+
+/// A pipeline token: entries [begin, end) of the seen lists and the pairs they gave.
+struct Chunk {
+  uint64_t begin = 0, end = 0;  ///< positions [begin, end) of the seen lists
+  size_t sourcesDone = 0;       ///< sources whose lists end by `end`
+  BlockerLists lists;
+  uint64_t visible = 0, partial = 0, sameCell = 0;
+};
+
+/// The seen lists and the patches laid out for the blocker tests.
+class BlockerDetection {
+ public:
+  BlockerDetection(const Scene& scene, const std::vector<PatchSearchResult>& seen,
+                   const Tolerance& tol)
+      : scene_(scene), seen_(seen), tol_(tol), n_(scene.patches.size()), patchBoxes_(n_) {
+    const size_t n = n_;
+    for (size_t p = 0; p < n; ++p) patchBoxes_[p] = scene.patches[p].polygon.bounds();
+    // Candidates come from a grid of patch boxes: only patches whose boxes meet conv(S, T)'s box
+    // can meet conv(S, T), so the scan no longer walks all of seen(S) and seen(T) for every pair.
+    grid_.emplace(patchBoxes_);
+    // The candidates' vertices in one array, patch by patch: candidates are tested in id order,
+    // so the test walks this array forwards instead of chasing a vector per patch.
+    vertexStart_.assign(n + 1, 0);
+    for (size_t p = 0; p < n; ++p)
+      vertexStart_[p + 1] = vertexStart_[p] + uint32_t(scene.patches[p].polygon.vertices.size());
+    vertices_.resize(vertexStart_[n]);
+    for (size_t p = 0; p < n; ++p)
+      std::copy(scene.patches[p].polygon.vertices.begin(), scene.patches[p].polygon.vertices.end(),
+                vertices_.begin() + vertexStart_[p]);
+    // The candidates' plane normals in one array (a Patch is far larger than its normal).
+    normals_.resize(n);
+    normalLengths_.resize(n);
+    for (size_t p = 0; p < n; ++p) {
+      normals_[p] = scene.patches[p].polygon.plane.normal;
+      normalLengths_[p] = length(normals_[p]);
+    }
+    // Work is counted in entries of the seen lists, all sources' lists one after another: source
+    // s holds positions [seenStart[s], seenStart[s + 1]), and its pairs (s, t) come from them.
+    seenStart_.assign(n + 1, 0);
+    for (size_t p = 0; p < n; ++p) seenStart_[p + 1] = seenStart_[p] + seen[p].seen.size();
+  }
+
+  size_t patchCount() const { return n_; }
+  const std::vector<Aabb>& patchBoxes() const { return patchBoxes_; }
+  /// Per source, where its entries start among all sources' (and the total, last).
+  const std::vector<uint64_t>& seenStart() const { return seenStart_; }
+
+  BlockerWorker makeWorker() const {
+    return BlockerWorker{std::vector<uint8_t>(n_, 0), std::vector<uint32_t>(grid_->patchCount()),
+                         std::vector<uint64_t>((n_ + 63) / 64, 0)};
+  }
+
+  /// The pairs of the chunk's entries, with their blocker lists.
+  void fill(BlockerWorker& w, Chunk& chunk) const {
+    const size_t n = n_;
+    const std::vector<uint64_t>& seenStart = seenStart_;
+    // The first source with entries at or after `begin`, then on while its entries start before
+    // `end`.
+    size_t s = size_t(std::upper_bound(seenStart.begin(), seenStart.end(), chunk.begin) -
+                      seenStart.begin()) -
+               1;
+    for (; s < n && seenStart[s] < chunk.end; ++s) {
+      const uint64_t from = std::max(chunk.begin, seenStart[s]);
+      const uint64_t to = std::min(chunk.end, seenStart[s + 1]);
+      if (from < to)
+        blockersOf(w, static_cast<uint32_t>(s), size_t(from - seenStart[s]),
+                   size_t(to - seenStart[s]), chunk);
+    }
+  }
+
+ private:
+  uint8_t flagsOf(uint32_t s, uint32_t t) const {
+    const auto& v = seen_[s].seen;
+    auto it = std::lower_bound(v.begin(), v.end(), seenEntry(t, 0));
+    return (it != v.end() && seenPatch(*it) == t) ? seenFlags(*it) : 0;
+  }
+  bool isSameCellVisible(uint32_t s, uint32_t t) const {
+    const auto& v = seen_[s].sameCellVisible;
+    return std::binary_search(v.begin(), v.end(), t);
+  }
+
+  /// The interactions (s, t), t > s, for entries [from, to) of seen(s), in t order, with their
+  /// blocker lists, appended to `chunk`.
+  void blockersOf(BlockerWorker& w, uint32_t s, size_t from, size_t to, Chunk& chunk) const {
+    const ConvexPolygon& sp = scene_.patches[s].polygon;
+    for (uint32_t e : seen_[s].seen) w.seen[seenPatch(e)] = kFromS;
+    for (size_t k = from; k < to; ++k) {
+      const uint32_t e = seen_[s].seen[k];
+      const uint32_t t = seenPatch(e);
+      const uint8_t f = seenFlags(e);
+      if (t <= s) continue;
+      // Both searches are conservative and a sightline runs both ways, so a real pair is seen
+      // front to front from each end: requiring both is exact pruning, not a guess.
+      const bool front = (f & kSeenFront) && (flagsOf(t, s) & kSeenFront);
+      const ConvexPolygon& tp = scene_.patches[t].polygon;
+      if (!front || !canFace(sp, tp, tol_.length())) continue;
+      BlockerLists& lists = chunk.lists;
+      lists.addPair(s, t);  // its blockers are appended below, straight into the chunk
+      if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
+        ++chunk.sameCell;
+      } else {
+        addBlockers(w, s, t, lists);
+      }
+      ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
+    }
+    for (uint32_t e : seen_[s].seen) w.seen[seenPatch(e)] = 0;
+  }
+
+  /// The blockers of pair (s, t), appended to the last list of `lists`: the candidates meeting
+  /// conv(S, T) seen from S (w.seen flags) or from T.
+  void addBlockers(BlockerWorker& w, uint32_t s, uint32_t t, BlockerLists& lists) const {
+    const PairHull hull(scene_.patches[s].polygon, scene_.patches[t].polygon, tol_);
+    Aabb box = patchBoxes_[s];
+    box.add(patchBoxes_[t]);
+    // The slack is PairHull's box tolerance: the grid does PairHull's box test.
+    const std::span<uint32_t> candidates(
+        w.gathered.data(), grid_->gatherInto(box, tol_.length(), w.gathered.data(), &hull));
+    const auto& b = seen_[t].seen;
+    sortIds(candidates, w.bits);  // blockers come out sorted
+    // Seen from T: by flags when there are many candidates to ask about (setting them costs a
+    // pass over seen(T)), else by searches in the sorted seen(T).
+    const bool flagT = candidates.size() * kFlagsPerSearch > b.size();
+    if (flagT)
+      for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
+    auto fromT = b.begin();  // candidates rise: each search starts where the last ended
+    for (uint32_t c : candidates) {
+      if (c == s || c == t) continue;
+      if (flagT) {
+        if (!w.seen[c]) continue;
+      } else if (!w.seen[c]) {
+        fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
+        if (fromT == b.end() || seenPatch(*fromT) != c) continue;
+      }
+      const std::span<const Vec3> cv(vertices_.data() + vertexStart_[c],
+                                     vertices_.data() + vertexStart_[c + 1]);
+      if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) lists.addBlocker(c);
+    }
+    if (flagT)
+      for (uint32_t entry : b) w.seen[seenPatch(entry)] &= kFromS;
+  }
+
+  const Scene& scene_;
+  const std::vector<PatchSearchResult>& seen_;
+  Tolerance tol_;
+  size_t n_;
+  std::vector<Aabb> patchBoxes_;
+  std::optional<PatchGrid> grid_;
+  std::vector<uint32_t> vertexStart_;
+  std::vector<Vec3> vertices_;
+  std::vector<Vec3> normals_;
+  std::vector<double> normalLengths_;
+  std::vector<uint64_t> seenStart_;
+};
+
+/// Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
+/// handed on (to the sink or into the graph) one at a time in order, so the output is (s, r)
+/// sorted whatever the schedule, and with a sink only the chunks in flight are held: each is at
+/// most kSeenPerChunk pairs, a source that saw many patches being cut into several. Chunks are
+/// reused (no allocation once their arrays have grown), unless they grew past kKeptIdsPerChunk.
+/// Returns the partial pairs in order (for the shaft sample).
+std::vector<std::pair<uint32_t, uint32_t>> runBlockerPipeline(const BlockerDetection& detection,
+                                                              int threads,
+                                                              const PropagationOptions& options,
+                                                              VisibilityGraph& graph) {
+  VisibilityStats& st = graph.stats;
+  const size_t n = detection.patchCount();
+  const std::vector<uint64_t>& seenStart = detection.seenStart();
+  tbb::enumerable_thread_specific<BlockerWorker> blockerWorkers(
+      [&detection] { return detection.makeWorker(); });
+  std::vector<std::unique_ptr<Chunk>> chunks;  // every chunk made (touched by the first stage)
+  tbb::concurrent_queue<Chunk*> freeChunks;    // handed back by the last stage
+  std::vector<std::pair<uint32_t, uint32_t>> partialPairs;  // in order, for the shaft sample
+  uint64_t blockerSum = 0;
+  uint64_t nextPosition = 0;
+  size_t sourcesReported = 0;
+  {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      tbb::parallel_pipeline(
+          kChunksInFlightPerThread * size_t(threads),
+          tbb::make_filter<void, Chunk*>(
+              tbb::filter_mode::serial_in_order,
+              [&](tbb::flow_control& fc) -> Chunk* {
+                if (nextPosition >= seenStart[n]) {
+                  fc.stop();
+                  return nullptr;
+                }
+                Chunk* chunk = nullptr;
+                if (!freeChunks.try_pop(chunk)) {
+                  chunks.push_back(std::make_unique<Chunk>());
+                  chunk = chunks.back().get();
+                }
+                chunk->begin = nextPosition;
+                chunk->end = nextPosition = std::min(seenStart[n], nextPosition + kSeenPerChunk);
+                // Sources s with seenStart[s + 1] <= end.
+                chunk->sourcesDone =
+                    size_t(std::upper_bound(seenStart.begin() + 1, seenStart.end(), chunk->end) -
+                           (seenStart.begin() + 1));
+                return chunk;
+              }) &
+              tbb::make_filter<Chunk*, Chunk*>(tbb::filter_mode::parallel,
+                                               [&](Chunk* chunk) {
+                                                 if (options.deadline != Clock::time_point::max() &&
+                                                     Clock::now() > options.deadline)
+                                                   throw PropagationDeadlineExceeded();
+                                                 detection.fill(blockerWorkers.local(), *chunk);
+                                                 return chunk;
+                                               }) &
+              tbb::make_filter<Chunk*, void>(tbb::filter_mode::serial_in_order, [&](Chunk* chunk) {
+                const BlockerLists& lists = chunk->lists;
+                st.pairsVisible += chunk->visible;
+                st.pairsPartial += chunk->partial;
+                st.sameCellShortcuts += chunk->sameCell;
+                blockerSum += lists.idCount();
+                for (size_t k = 0; k < lists.size(); ++k)
+                  if (!lists.blockers(k).empty()) partialPairs.emplace_back(lists.s(k), lists.r(k));
+                if (options.interactionSink) {
+                  options.interactionSink(lists);
+                } else {
+                  for (size_t k = 0; k < lists.size(); ++k) {
+                    const auto ids = lists.blockers(k);
+                    graph.interactions.push_back(
+                        {lists.s(k), lists.r(k), std::vector<uint32_t>(ids.begin(), ids.end())});
+                  }
+                }
+                if (options.blockerProgress && chunk->sourcesDone > sourcesReported)
+                  options.blockerProgress(sourcesReported = chunk->sourcesDone, n);
+                if (chunk->lists.idCapacity() > kKeptIdsPerChunk) chunk->lists = {};
+                chunk->lists.clear();
+                chunk->visible = chunk->partial = chunk->sameCell = 0;
+                freeChunks.push(chunk);
+              }));
+    });
+  }
+  if (options.blockerProgress && sourcesReported < n) options.blockerProgress(n, n);
+  st.meanBlockersPerPartial = st.pairsPartial ? double(blockerSum) / double(st.pairsPartial) : 0;
+  return partialPairs;
+}
+
+/// Shaft-culling baseline (Haines & Wallace): every patch meeting conv(S, R), on a sample of the
+/// partial pairs.
+void sampleShaftCulling(const Scene& scene, const std::vector<Aabb>& patchBoxes,
+                        const std::vector<std::pair<uint32_t, uint32_t>>& partialPairs,
+                        const Tolerance& tol, const PropagationOptions& options,
+                        VisibilityStats& st) {
+  const size_t n = scene.patches.size();
+  if (st.pairsPartial > 0 && options.shaftSamples > 0) {
+    const uint64_t stride = std::max<uint64_t>(1, st.pairsPartial / options.shaftSamples);
+    uint64_t k = 0, sum = 0;
+    for (const auto& [ps, pr] : partialPairs) {
+      if ((k++ % stride) != 0) continue;
+      const PairHull hull(scene.patches[ps].polygon, scene.patches[pr].polygon, tol);
+      for (uint32_t c = 0; c < n; ++c)
+        if (c != ps && c != pr && hull.meets(scene.patches[c].polygon, patchBoxes[c])) ++sum;
+      ++st.shaftSamples;
+    }
+    st.meanShaftCullPerPartial = double(sum) / double(st.shaftSamples);
+  }
+}
+
+}  // namespace
+
+void detectBlockers(const Scene& scene, const std::vector<PatchSearchResult>& seen,
+                    const Tolerance& tol, int threads, const PropagationOptions& options,
+                    VisibilityGraph& graph) {
+  const auto blockerStart = Clock::now();
+  const BlockerDetection detection(scene, seen, tol);
+  const std::vector<std::pair<uint32_t, uint32_t>> partialPairs =
+      runBlockerPipeline(detection, threads, options, graph);
+  graph.stats.blockerSeconds = secondsSince(blockerStart);
+  sampleShaftCulling(scene, detection.patchBoxes(), partialPairs, tol, options, graph.stats);
+}
+
+}  // namespace gv

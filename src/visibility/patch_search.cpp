@@ -1,0 +1,344 @@
+// Patch-to-patch searches (paper §4.2): pieces of patches placed in the cells, and the search
+// from each patch, pruned by the stabbing test and by what is already seen (see patch_search.h).
+#include "visibility/patch_search.h"
+
+#include <algorithm>
+#include <atomic>
+#include <deque>
+#include <mutex>
+#include <optional>
+
+#include "util/parallel_for.h"
+#include "visibility/facing_lines.h"
+#include "visibility/search_deadline.h"
+
+namespace gv {
+namespace {
+
+/// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
+struct CellPatch {
+  uint32_t patch = 0;
+  ConvexPolygon piece;
+  bool facesIn = false;   ///< the front looks into the cell
+  bool interior = false;  ///< lies inside the cell: sightlines may meet either side
+  bool whole = false;     ///< the piece is the whole patch
+};
+
+/// The part of p within the cell, grown by the BSP's plane-merging tolerance so that pieces moved
+/// onto merged planes are never lost (a larger piece only makes the search see more).
+std::optional<ConvexPolygon> clipToCell(const ConvexPolygon& p, const ConvexPolyhedron& cell,
+                                        const Tolerance& tol) {
+  std::optional<ConvexPolygon> cur = p;
+  const double slack = tol.planeOffset();
+  for (const Plane& h : cell.halfspaces) {
+    cur = clipToFront(*cur, Plane{-h.normal, -h.offset - slack}, tol);  // keep h.distance <= slack
+    if (!cur) return std::nullopt;
+  }
+  return cur;
+}
+
+/// The flags a search can give a patch through this piece of it.
+uint8_t attainable(const CellPatch& cp) {
+  return (cp.facesIn || cp.interior) ? (kSeen | kSeenFront) : kSeen;
+}
+
+using Placements = std::vector<std::vector<std::pair<uint32_t, size_t>>>;
+
+/// Pieces of patches per cell, and where each patch lies: placements[p] lists (cell, index in
+/// cellPatches[cell]) of p's pieces.
+struct PatchPlacement {
+  std::vector<std::vector<CellPatch>> cellPatches;
+  Placements placements;
+};
+
+PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const Tolerance& tol) {
+  PatchPlacement out;
+  std::vector<std::vector<CellPatch>>& cellPatches = out.cellPatches;
+  Placements& placements = out.placements;
+  cellPatches.resize(sub.cells.size());
+  placements.resize(scene.patches.size());
+  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+    const Cell& cell = sub.cells[c];
+    const Vec3 inside = cell.shape.centroid();
+    for (uint32_t p : cell.patches) {
+      const ConvexPolygon& poly = scene.patches[p].polygon;
+      auto piece = clipToCell(poly, cell.shape, tol);
+      if (!piece) continue;
+      CellPatch cp;
+      cp.patch = p;
+      cp.interior = std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
+      cp.facesIn = poly.plane.distance(inside) > 0;
+      cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
+      cp.piece = std::move(*piece);
+      placements[p].emplace_back(c, cellPatches[c].size());
+      cellPatches[c].push_back(std::move(cp));
+    }
+  }
+  return out;
+}
+
+/// Per-thread state of the patch-level search. Beyond the stabbing test it prunes a branch when
+/// every cell the branch might still reach (MightSee) holds only patches already seen in every
+/// way they can be seen: the search's only output is those flags, so nothing is lost.
+class PatchSearch {
+ public:
+  DeadlineCheck checkDeadline;
+  PatchSearch(const Subdivision& sub, const std::vector<std::vector<CellPatch>>& cellPatches,
+              const Placements& placements, const PortalReach& might,
+              const std::vector<CellSet>& cellReach, const Tolerance& tol)
+      : sub_(sub),
+        cellPatches_(cellPatches),
+        placements_(placements),
+        might_(might),
+        cellReach_(cellReach),
+        stabber_(tol),
+        flags_(placements.size(), 0),
+        onPath_(sub.cells.size(), 0),
+        unsaturatedCount_(sub.cells.size(), 0),
+        unsaturated_(sub.cells.size()),
+        tol_(tol) {
+    for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+      baseCount_.push_back(static_cast<uint32_t>(cellPatches[c].size()));
+      if (!cellPatches[c].empty()) unsaturated_.insert(c);
+    }
+    unsaturatedCount_ = baseCount_;
+  }
+
+  PatchSearchResult run(uint32_t s) {
+    PatchSearchResult result;
+    stabber_.resetStats();
+    facingRuleTests_ = 0;
+    source_ = s;
+    overBudget_ = false;
+    // The source's own pieces are never targets: they count as saturated.
+    for (auto [cell, k] : placements_[s]) decrement(cell);
+    for (auto [cell, k] : placements_[s]) {
+      const CellPatch& cp = cellPatches_[cell][k];
+      if (!cp.facesIn && !cp.interior) continue;  // S's front does not look into this cell
+      stabber_.clear();
+      if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
+      sourcePiece_ = &cp.piece;
+      const bool cellEmpty = sub_.cells[cell].interiorPatches.empty();
+      if (cp.whole && cellEmpty) {
+        for (const CellPatch& t : cellPatches_[cell])
+          if (t.patch != s && t.whole && t.facesIn) result.sameCellVisible.push_back(t.patch);
+      }
+      // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
+      visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
+      if (overBudget_) break;
+    }
+    if (overBudget_) {
+      markEverythingReachable(s);
+      result.overBudget = true;
+    }
+    for (uint32_t t : touched_) {
+      result.seen.push_back(seenEntry(t, flags_[t]));
+      flags_[t] = 0;
+    }
+    touched_.clear();
+    for (uint32_t c : touchedCells_) {
+      unsaturatedCount_[c] = baseCount_[c];
+      if (baseCount_[c] > 0) unsaturated_.insert(c);
+    }
+    touchedCells_.clear();
+    std::sort(result.seen.begin(), result.seen.end());
+    std::sort(result.sameCellVisible.begin(), result.sameCellVisible.end());
+    result.sameCellVisible.erase(
+        std::unique(result.sameCellVisible.begin(), result.sameCellVisible.end()),
+        result.sameCellVisible.end());
+    result.stabbing = stabber_.stats();
+    result.facingRuleTests = facingRuleTests_;
+    return result;
+  }
+
+  /// Portal sequences (pushes of portals and targets) one run may test before it gives up and
+  /// marks everything it might reach (0: no limit).
+  void setBudget(uint64_t pushes) { budget_ = pushes ? pushes : UINT64_MAX; }
+
+ private:
+  /// The conservative answer of a search over budget: every piece in every cell S's cells may
+  /// see (the cell search's sets; without them, the cells the flows of their portals reach), with
+  /// every flag it could get there. The search itself marks only pieces in such cells: a sequence
+  /// stabbed from S's piece is one stabbed from S's cell.
+  void markEverythingReachable(uint32_t s) {
+    CellSet cells(sub_.cells.size());
+    for (auto [cell, k] : placements_[s]) {
+      const CellPatch& cp = cellPatches_[cell][k];
+      if (!cp.facesIn && !cp.interior) continue;
+      if (!cellReach_.empty()) {
+        cells.unite(cellReach_[cell]);
+        continue;
+      }
+      cells.insert(cell);
+      for (uint32_t pid : sub_.cells[cell].portals) {
+        const Portal& p = sub_.portals[pid];
+        cells.unite(might_.through(pid, p.front != cell));
+      }
+    }
+    cells.forEach([&](size_t c) {
+      for (const CellPatch& t : cellPatches_[c])
+        if (t.patch != s) mark(t.patch, attainable(t));
+    });
+  }
+
+  void decrement(uint32_t cell) {
+    if (unsaturatedCount_[cell] == baseCount_[cell]) touchedCells_.push_back(cell);
+    if (--unsaturatedCount_[cell] == 0) unsaturated_.erase(cell);
+  }
+
+  void mark(uint32_t t, uint8_t f) {
+    const uint8_t before = flags_[t];
+    const uint8_t after = before | f;
+    if (after == before) return;
+    if (before == 0) touched_.push_back(t);
+    flags_[t] = after;
+    for (auto [cell, k] : placements_[t]) {
+      const uint8_t need = attainable(cellPatches_[cell][k]);
+      if ((before & need) != need && (after & need) == need) decrement(cell);
+    }
+  }
+
+  /// The sequence (S's piece, T's piece) inside one convex cell, decided exactly by
+  /// facingLines (facing_lines.h) instead of the stabbing kernel.
+  void testInSourceCell(const CellPatch& t) {
+    const uint8_t have = flags_[t.patch];
+    const bool wantFront = (t.facesIn || t.interior) && !(have & kSeenFront);
+    const bool wantBack = (!t.facesIn || t.interior) && !(have & kSeen);
+    if (!wantFront && !wantBack) return;
+    const FacingLines lines = facingLines(*sourcePiece_, t.piece, tol_.length());
+    if (wantFront) {
+      ++facingRuleTests_;
+      if (lines.throughFront) mark(t.patch, kSeen | kSeenFront);
+    }
+    if (wantBack && !(flags_[t.patch] & kSeen)) {
+      ++facingRuleTests_;
+      if (lines.throughBack) mark(t.patch, kSeen);
+    }
+  }
+
+  /// Tests T crossed the way a sightline arriving from inside the cell crosses it.
+  void testTarget(const CellPatch& t) {
+    if (t.patch == source_) return;
+    if (stabber_.depth() == 1) {
+      testInSourceCell(t);
+      return;
+    }
+    const uint8_t have = flags_[t.patch];
+    // Front hit: the line crosses T from its front to its back (loop reversed = travel normal).
+    if ((t.facesIn || t.interior) && !(have & kSeenFront)) {
+      scratch_.assign(t.piece.vertices.rbegin(), t.piece.vertices.rend());
+      if (stabber_.push(scratch_) != StabbingResult::Blocked) {
+        mark(t.patch, kSeen | kSeenFront);
+        stabber_.pop();
+      }
+    }
+    if ((!t.facesIn || t.interior) && !(flags_[t.patch] & kSeen)) {
+      if (stabber_.push(t.piece.vertices) != StabbingResult::Blocked) {
+        mark(t.patch, kSeen);
+        stabber_.pop();
+      }
+    }
+  }
+
+  /// `reach`: the cells this branch may still reach (null: all).
+  void visit(uint32_t cell, size_t depth, const CellSet* reach) {
+    checkDeadline();
+    if (overBudget_ || stabber_.stats().tests >= budget_) {
+      overBudget_ = true;  // unwinds the search; run() then answers conservatively
+      return;
+    }
+    onPath_[cell] = 1;
+    for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
+    if (stack_.size() <= depth) stack_.resize(depth + 1);
+    for (uint32_t pid : sub_.cells[cell].portals) {
+      const Portal& p = sub_.portals[pid];
+      const uint32_t next = p.other(cell);
+      if (onPath_[next]) continue;  // a line cannot enter a convex cell twice
+      const bool forward = p.front == next;
+      const CellSet& through = might_.through(pid, forward);
+      CellSet& nextReach = stack_[depth];
+      if (reach) nextReach.assignIntersection(*reach, through);
+      const CellSet& r = reach ? nextReach : through;
+      if (!r.intersects(unsaturated_)) continue;  // nothing new can be seen that way
+      if (forward) {
+        scratch_ = p.polygon.vertices;
+      } else {
+        scratch_.assign(p.polygon.vertices.rbegin(), p.polygon.vertices.rend());
+      }
+      if (stabber_.push(scratch_) == StabbingResult::Blocked) continue;
+      visit(next, depth + 1, &r);
+      stabber_.pop();
+      if (overBudget_) break;
+    }
+    onPath_[cell] = 0;
+  }
+
+  const Subdivision& sub_;
+  const std::vector<std::vector<CellPatch>>& cellPatches_;
+  const Placements& placements_;
+  const PortalReach& might_;
+  const std::vector<CellSet>& cellReach_;  // per cell, the cells it may see (empty: unknown)
+  PortalSequenceStabber stabber_;
+  std::vector<uint8_t> flags_;
+  std::vector<uint32_t> touched_, touchedCells_;
+  std::vector<uint8_t> onPath_;
+  std::vector<uint32_t> baseCount_, unsaturatedCount_;
+  CellSet unsaturated_;
+  std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
+  std::vector<Vec3> scratch_;
+  uint32_t source_ = 0;
+  const ConvexPolygon* sourcePiece_ = nullptr;  // S's piece that starts the current sequence
+  uint64_t facingRuleTests_ = 0;
+  uint64_t budget_ = UINT64_MAX;  // stabbing tests per run (setBudget)
+  bool overBudget_ = false;
+  Tolerance tol_;
+};
+
+}  // namespace
+
+std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivision& sub,
+                                             const CellVisibility& cells, int threads,
+                                             const PropagationOptions& options,
+                                             VisibilityStats& st) {
+  const size_t n = scene.patches.size();
+  const Tolerance tol = sub.tree.tol;
+  const PatchPlacement placed = placePatches(scene, sub, tol);
+  const std::vector<std::vector<CellPatch>>& cellPatches = placed.cellPatches;
+  const Placements& placements = placed.placements;
+  const PortalReach reach = cells.reach();
+  const std::vector<CellSet>& cellReach = cells.cellReach;
+  std::vector<PatchSearchResult> seen(n);
+  std::atomic<size_t> done{0};
+  std::mutex progressMutex;
+  parallelFor(
+      n, threads,
+      [&] {
+        PatchSearch w(sub, cellPatches, placements, reach, cellReach, tol);
+        w.checkDeadline.deadline = options.deadline;
+        w.setBudget(options.patchSequenceBudget);
+        return w;
+      },
+      [&](PatchSearch& w, size_t s) {
+        seen[s] = w.run(static_cast<uint32_t>(s));
+        const size_t d = ++done;
+        if (options.progress && (d % 64 == 0 || d == n)) {
+          std::lock_guard lock(progressMutex);
+          options.progress(d, n);
+        }
+      });
+  StabbingStats stabbing;
+  uint64_t seenEntries = 0;
+  for (const PatchSearchResult& r : seen) {
+    stabbing += r.stabbing;
+    st.patchFacingRuleTests += r.facingRuleTests;
+    seenEntries += r.seen.size();
+    st.patchSearchesOverBudget += r.overBudget;
+  }
+  st.meanPatchesSeen = n ? double(seenEntries) / double(n) : 0;
+  st.patchStabbingTests = stabbing.tests + st.patchFacingRuleTests;
+  st.patchStabbing = stabbing;
+  st.unresolvedStabbing = stabbing.unresolved + stabbing.lpNumericalFailures;
+  return seen;
+}
+
+}  // namespace gv
