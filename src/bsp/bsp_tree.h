@@ -26,6 +26,11 @@ inline constexpr double kRootMarginFraction = 0.05;
 /// 3,884; measured 2026-12-01, docs/BENCHMARKS.md). The paper's heuristic aims at the same:
 /// no "free-space splitting" (§7.3).
 inline constexpr double kVisibilityMinCoverage = 0.3;
+/// The stop rules `vis` tries in turn, coarsest first (buildVisibilitySubdivision in
+/// bsp/subdivision.h): on real levels no wall covers 0.3 of a section through many rooms, and the
+/// coarse rule leaves the level one cell (sector levels) or a few cells holding most of the
+/// surface (arena levels), where the searches then cull nothing.
+inline constexpr double kVisibilityCoverageSteps[] = {kVisibilityMinCoverage, 0.1, 0.03, 0.0};
 
 /// Tuning of the BSP construction.
 struct BspOptions {

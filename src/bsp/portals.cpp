@@ -7,6 +7,7 @@
 
 #include "bsp/box_grid.h"
 #include "bsp/coplanar_clip.h"
+#include "scene/face_to_patches.h"
 
 namespace gv {
 namespace {
@@ -117,6 +118,12 @@ void buildPortals(Subdivision& sub) {
           if (pieces.empty()) break;
         }
         for (ConvexPolygon& piece : pieces) {
+          // A piece thinner than the model tolerance is a crack between abutting patches (a
+          // floor's edge a rounding error short of its wall), not an opening: the scene is only
+          // resolved to that tolerance, import drops faces that thin (isSliver), and sightlines
+          // through it pass within the tolerance of a patch's edge. Kept, such needles joined
+          // the void around a level to its rooms and made every search walk both.
+          if (isSliver(piece, tol)) continue;
           const auto id = static_cast<uint32_t>(sub.portals.size());
           sub.portals.push_back({std::move(piece), b.cell, f.cell, static_cast<int32_t>(n)});
           sub.cells[b.cell].faces[b.face].portals.push_back(id);

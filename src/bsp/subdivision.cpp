@@ -69,6 +69,27 @@ Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
   s.meanFacesPerCell = static_cast<double>(faces) / n;
   s.meanCoaffinePatchesPerCell = static_cast<double>(coaffine) / n;
   s.meanPortalsPerCell = 2.0 * static_cast<double>(s.portals) / n;
+  s.minCoverage = options.minCoverage;
+  std::vector<char> interior(scene.patches.size(), 0);
+  for (const Cell& cell : sub.cells)
+    for (uint32_t p : cell.interiorPatches) interior[p] = 1;
+  double inside = 0, total = 0;
+  for (size_t p = 0; p < scene.patches.size(); ++p) {
+    const double area = scene.patches[p].polygon.area();
+    total += area;
+    if (interior[p]) inside += area;
+  }
+  s.interiorAreaFraction = total > 0 ? inside / total : 0;
+  return sub;
+}
+
+Subdivision buildVisibilitySubdivision(const Scene& scene, BspOptions options) {
+  Subdivision sub;
+  for (double coverage : kVisibilityCoverageSteps) {
+    options.minCoverage = coverage;
+    sub = buildSubdivision(scene, options);
+    if (sub.stats.interiorAreaFraction <= kMaxInteriorAreaFraction) break;
+  }
   return sub;
 }
 

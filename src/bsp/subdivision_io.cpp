@@ -74,6 +74,8 @@ nlohmann::json statsJson(const SubdivisionStats& s) {
           {"mean_boundary_faces_per_cell", s.meanFacesPerCell},
           {"mean_coaffine_patches_per_cell", s.meanCoaffinePatchesPerCell},
           {"mean_portals_per_cell", s.meanPortalsPerCell},
+          {"min_coverage", s.minCoverage},
+          {"interior_area_fraction", s.interiorAreaFraction},
           {"bsp_seconds", s.bspSeconds},
           {"portal_seconds", s.portalSeconds}};
 }

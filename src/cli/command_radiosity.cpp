@@ -59,10 +59,10 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--no-contact-split", s->noContactSplit,
                 "Keep the patches whole instead of cutting them along the outlines of the patches "
                 "resting on them or hanging just in front (scene/contact_split.h)");
-  cmd->add_option("--min-coverage", s->bsp.minCoverage,
-                  "blockers mode: BSP stop rule (see `globalvis cells --help`)")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+  auto* coverage = cmd->add_option("--min-coverage", s->bsp.minCoverage,
+                                   "blockers mode: BSP stop rule (see `globalvis cells --help`); "
+                                   "default: chosen as `vis` chooses it")
+                       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--rays", s->rays, "Visibility rays per link")->check(CLI::Range(1, 4096));
   cmd->add_option("--epsilon", s->options.epsilon,
                   "BF refinement threshold, as a fraction of the total emitted power")
@@ -90,7 +90,7 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--flat", s->flat, "Pictures with one colour per element instead of smooth");
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
-  return [s] {
+  return [s, coverage] {
     const Scene scene = loadPipelineScene(s->scene, {!s->noContactSplit, s->keepHidden});
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     // Progress (a bar per refinement round, a line per round) only on a terminal.
@@ -115,7 +115,8 @@ Action addRadiosityCommand(CLI::App& app) {
       const auto t0 = Clock::now();
       ProgressBar bspBar("BSP", progress);
       if (progress) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
-      const Subdivision sub = buildSubdivision(scene, s->bsp);
+      const Subdivision sub = coverage->count() > 0 ? buildSubdivision(scene, s->bsp)
+                                                    : buildVisibilitySubdivision(scene, s->bsp);
       bspBar.finish();
       ProgressBar cellBar("visibility (per source cell)", progress);
       ProgressBar visBar("visibility (per source patch)", progress);

@@ -40,10 +40,12 @@ Action addVisCommand(CLI::App& app) {
   cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
   cmd->add_option("--threads", s->propagation.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
-  cmd->add_option("--min-coverage", s->bsp.minCoverage,
-                  "BSP stop rule (see `globalvis cells --help`); 0 splits on every patch plane")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 1.0));
+  auto* coverage =
+      cmd->add_option("--min-coverage", s->bsp.minCoverage,
+                      "BSP stop rule (see `globalvis cells --help`); 0 splits on every patch "
+                      "plane. Default: the coarsest of 0.3, 0.1, 0.03, 0 whose cells hold at "
+                      "most half the patches' area inside them (bsp/subdivision.h)")
+          ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--cell-budget", s->propagation.cellSequenceBudget,
                   "Portal sequences one cell-to-cell search (one directed portal) may test before "
                   "it answers with everything it might reach (0 = no limit; conservative either "
@@ -59,12 +61,13 @@ Action addVisCommand(CLI::App& app) {
                 "Cut patches along the outlines of the patches resting on them first, as "
                 "`radiosity` does (scene/contact_split.h): more patches, much shorter blocker "
                 "lists, and the same patches as a radiosity run");
-  return [s] {
+  return [s, coverage] {
     const Scene scene = loadPipelineScene(s->scene, {s->contactSplit, s->keepHidden});
     for (const std::string& w : scene.report.warnings) fmt::print(stderr, "warning: {}\n", w);
     ProgressBar bspBar("BSP");
     if (bspBar.enabled()) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
-    const Subdivision sub = buildSubdivision(scene, s->bsp);
+    const Subdivision sub = coverage->count() > 0 ? buildSubdivision(scene, s->bsp)
+                                                  : buildVisibilitySubdivision(scene, s->bsp);
     bspBar.finish();
     ProgressBar cellBar("visibility (per source cell)");
     ProgressBar visBar("visibility (per source patch)");
@@ -97,9 +100,11 @@ Action addVisCommand(CLI::App& app) {
     const VisibilityStats& v = graph.stats;
     const double pairs = double(v.patches) * double(v.patches - 1) / 2;
     const uint64_t listed = v.pairsVisible + v.pairsPartial;
-    fmt::print("patches {}  cells {}  portals {}  (BSP {:.3f} s, portals {:.3f} s)\n",
-               sub.stats.patches, sub.stats.cells, sub.stats.portals, sub.stats.bspSeconds,
-               sub.stats.portalSeconds);
+    fmt::print(
+        "patches {}  cells {}  portals {}  (stop rule {}, {:.1f} % of the patch area inside "
+        "cells; BSP {:.3f} s, portals {:.3f} s)\n",
+        sub.stats.patches, sub.stats.cells, sub.stats.portals, sub.stats.minCoverage,
+        100 * sub.stats.interiorAreaFraction, sub.stats.bspSeconds, sub.stats.portalSeconds);
     fmt::print("pairs listed {} of {:.0f} ({:.2f} %): VISIBLE {}, PARTIAL {} ({:.1f} %)\n", listed,
                pairs, pairs > 0 ? 100.0 * double(listed) / pairs : 0.0, v.pairsVisible,
                v.pairsPartial, listed ? 100.0 * double(v.pairsPartial) / double(listed) : 0.0);

@@ -178,7 +178,7 @@ struct Searcher {
   const SearchInputs& inputs;
   const uint64_t maxSequences;  // per search; 0: no limit (CellPvsOptions::maxSequencesPerSearch)
   uint64_t budgetEnd = 0;       // the search stops once `sequences` passes this
-  bool overBudget = false;      // the current search stopped: its answer is frames[1]
+  bool overBudget = false;      // the current search ran out of budget (see visitExit)
   uint64_t searchesOverBudget = 0;
   // Results of directed portals ranked below this are used (see SearchInputs).
   size_t usableRanks = 0;
@@ -245,13 +245,7 @@ struct Searcher {
     budgetEnd = maxSequences ? sequences + maxSequences : UINT64_MAX;
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
-    if (overBudget) {
-      // Every cell a stabbable sequence through p reaches is in frames[1] (no branch enters a
-      // cell outside it): answering with all of it keeps the search conservative.
-      ++searchesOverBudget;
-      found.unite(frames[1]);
-      visible.unite(frames[1]);
-    }
+    searchesOverBudget += overBudget;
   }
 
   bool reachesAll(const CellSet& set) const {
@@ -282,8 +276,6 @@ struct Searcher {
   // One step of recurse: the branch through portal `ri` of `cell`; false when the cell's own
   // sequence proved blocked (nothing more can be pushed on it).
   bool visitExit(int cell, size_t depth, int ri) {
-    if (sequences >= budgetEnd) overBudget = true;
-    if (overBudget) return false;  // unwinds the whole search (see searchFrom)
     const DirectedPortal& r = g.portals[ri];
     if (onPath[r.to]) return true;  // a line meets a convex cell in one segment
     frame(depth + 1);               // allocate first: references into `frames` are taken below
@@ -293,6 +285,16 @@ struct Searcher {
     if (!reachesAll(might(ri ^ 1))) return true;
     // Nothing this branch might reach is unseen: it cannot change the answer.
     if (!frames[depth + 1].assignIntersectionHasNew(frames[depth], might(ri), visible)) return true;
+    if (sequences >= budgetEnd) {
+      // Over budget (CellPvsOptions::maxSequencesPerSearch): the branch is answered untested
+      // with every cell it might reach (frames[depth + 1], and r.to) — no stabbable sequence
+      // through it reaches any other — and the branches explored before keep their answers.
+      overBudget = true;
+      frames[depth + 1].insert(static_cast<size_t>(r.to));
+      found.unite(frames[depth + 1]);
+      visible.unite(frames[depth + 1]);
+      return true;
+    }
     ++sequences;
     // Entering a cell already seen, the push matters only for what lies behind it: its LP may
     // wait until a deeper portal needs it.

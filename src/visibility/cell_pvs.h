@@ -51,10 +51,11 @@ struct CellPvsOptions {
   /// tightest PVS, and slower. Off (the default): a search does not look for the cells whose
   /// own searches are all finished (their answer for the pair stands); see computeCellPvs.
   bool bothSides = false;
-  /// A search that pushes more portal sequences than this (0: no limit) stops and answers with
-  /// every cell it might have reached (its might-see set after the reverse test): conservative,
-  /// looser, and bounded. Real levels have a few portals whose sequences fan out combinatorially
-  /// (thin slab cells stacked under long sightlines); one such search could run for minutes.
+  /// Portal sequences one search may push (0: no limit). Past it the search stops testing:
+  /// each branch it has not explored yet is answered with every cell it might reach (its
+  /// might-see set narrowed along the path), while the branches explored keep their answers:
+  /// conservative, looser, bounded. On real levels some portals' sequences fan out
+  /// combinatorially (thin cells under long sightlines); one such search could run for minutes.
   uint64_t maxSequencesPerSearch = 0;
 };
 
@@ -71,8 +72,7 @@ struct CellPvsResult {
   double meanCellsMightSee = 0;
   StabbingStats stabbing;
   uint64_t sequencesSearched = 0;  ///< portal sequences pushed by the searches
-  /// Directed-portal searches stopped by CellPvsOptions::maxSequencesPerSearch (their answer is
-  /// their might-see set).
+  /// Directed-portal searches that ran out of CellPvsOptions::maxSequencesPerSearch.
   uint64_t searchesOverBudget = 0;
   /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
   std::vector<uint64_t> successesByLength, failuresByLength;

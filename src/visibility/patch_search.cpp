@@ -96,6 +96,7 @@ class PatchSearch {
         onPath_(sub.cells.size(), 0),
         unsaturatedCount_(sub.cells.size(), 0),
         unsaturated_(sub.cells.size()),
+        fullyMarked_(sub.cells.size()),
         tol_(tol) {
     for (uint32_t c = 0; c < sub.cells.size(); ++c) {
       baseCount_.push_back(static_cast<uint32_t>(cellPatches[c].size()));
@@ -125,12 +126,10 @@ class PatchSearch {
       }
       // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
       visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
-      if (overBudget_) break;
     }
-    if (overBudget_) {
-      markEverythingReachable(s);
-      result.overBudget = true;
-    }
+    result.overBudget = overBudget_;
+    for (uint32_t c : markedCells_) fullyMarked_.erase(c);
+    markedCells_.clear();
     for (uint32_t t : touched_) {
       result.seen.push_back(seenEntry(t, flags_[t]));
       flags_[t] = 0;
@@ -151,34 +150,26 @@ class PatchSearch {
     return result;
   }
 
-  /// Portal sequences (pushes of portals and targets) one run may test before it gives up and
-  /// marks everything it might reach (0: no limit).
-  void setBudget(uint64_t pushes) { budget_ = pushes ? pushes : UINT64_MAX; }
+  /// Stabbing tests (portals and targets) one run may make (0: no limit). Past it the search
+  /// stops testing: every branch it has not explored yet is answered with every piece, with
+  /// every flag, in every cell the branch might reach (its reach set), which is conservative —
+  /// the branch's stabbable sequences reach only those cells — and keeps the exact answers of
+  /// the branches already explored.
+  void setBudget(uint64_t tests) { budget_ = tests ? tests : UINT64_MAX; }
 
  private:
-  /// The conservative answer of a search over budget: every piece in every cell S's cells may
-  /// see (the cell search's sets; without them, the cells the flows of their portals reach), with
-  /// every flag it could get there. The search itself marks only pieces in such cells: a sequence
-  /// stabbed from S's piece is one stabbed from S's cell.
-  void markEverythingReachable(uint32_t s) {
-    CellSet cells(sub_.cells.size());
-    for (auto [cell, k] : placements_[s]) {
-      const CellPatch& cp = cellPatches_[cell][k];
-      if (!cp.facesIn && !cp.interior) continue;
-      if (!cellReach_.empty()) {
-        cells.unite(cellReach_[cell]);
-        continue;
-      }
-      cells.insert(cell);
-      for (uint32_t pid : sub_.cells[cell].portals) {
-        const Portal& p = sub_.portals[pid];
-        cells.unite(might_.through(pid, p.front != cell));
-      }
-    }
-    cells.forEach([&](size_t c) {
-      for (const CellPatch& t : cellPatches_[c])
-        if (t.patch != s) mark(t.patch, attainable(t));
-    });
+  bool exhausted() {
+    if (!overBudget_ && stabber_.stats().tests >= budget_) overBudget_ = true;
+    return overBudget_;
+  }
+
+  /// Marks every piece of `cell` (but the source's) with every flag it could get.
+  void markCell(uint32_t cell) {
+    if (fullyMarked_.contains(cell)) return;
+    fullyMarked_.insert(cell);
+    markedCells_.push_back(cell);
+    for (const CellPatch& t : cellPatches_[cell])
+      if (t.patch != source_) mark(t.patch, attainable(t));
   }
 
   void decrement(uint32_t cell) {
@@ -243,12 +234,12 @@ class PatchSearch {
   /// `reach`: the cells this branch may still reach (null: all).
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
     checkDeadline();
-    if (overBudget_ || stabber_.stats().tests >= budget_) {
-      overBudget_ = true;  // unwinds the search; run() then answers conservatively
-      return;
-    }
     onPath_[cell] = 1;
-    for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
+    if (exhausted()) {
+      markCell(cell);
+    } else {
+      for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
+    }
     if (stack_.size() <= depth) stack_.resize(depth + 1);
     for (uint32_t pid : sub_.cells[cell].portals) {
       const Portal& p = sub_.portals[pid];
@@ -260,6 +251,11 @@ class PatchSearch {
       if (reach) nextReach.assignIntersection(*reach, through);
       const CellSet& r = reach ? nextReach : through;
       if (!r.intersects(unsaturated_)) continue;  // nothing new can be seen that way
+      if (exhausted()) {  // setBudget: the branch's answer without testing it
+        markCell(next);
+        r.forEach([&](size_t c) { markCell(static_cast<uint32_t>(c)); });
+        continue;
+      }
       if (forward) {
         scratch_ = p.polygon.vertices;
       } else {
@@ -268,7 +264,6 @@ class PatchSearch {
       if (stabber_.push(scratch_) == StabbingResult::Blocked) continue;
       visit(next, depth + 1, &r);
       stabber_.pop();
-      if (overBudget_) break;
     }
     onPath_[cell] = 0;
   }
@@ -291,6 +286,8 @@ class PatchSearch {
   uint64_t facingRuleTests_ = 0;
   uint64_t budget_ = UINT64_MAX;  // stabbing tests per run (setBudget)
   bool overBudget_ = false;
+  CellSet fullyMarked_;                // cells markCell has done in this run
+  std::vector<uint32_t> markedCells_;  // the same, listed (to clear them)
   Tolerance tol_;
 };
 

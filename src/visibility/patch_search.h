@@ -41,7 +41,9 @@ struct PatchSearchResult {
   std::vector<uint32_t> sameCellVisible;  ///< patches proven VISIBLE by the shortcut
   StabbingStats stabbing;
   uint64_t facingRuleTests = 0;  ///< (S, T) tests in S's own cell, decided by testInSourceCell
-  bool overBudget = false;       ///< the search gave up: `seen` is everything it might reach
+  /// The search ran out of budget: the branches it had not explored then were answered with
+  /// every piece they might reach.
+  bool overBudget = false;
 };
 
 /// The patch searches from every patch of `scene` (its pieces placed in the cells of `sub`),

@@ -16,8 +16,8 @@
 namespace gv {
 
 /// Defaults of PropagationOptions' search budgets.
-inline constexpr uint64_t kDefaultCellSequenceBudget = 200000;
-inline constexpr uint64_t kDefaultPatchSequenceBudget = 200000;
+inline constexpr uint64_t kDefaultCellSequenceBudget = 500;
+inline constexpr uint64_t kDefaultPatchSequenceBudget = 5000;
 
 struct PropagationOptions {
   /// Threads for the per-source searches (1 = serial). The output does not depend on it.
