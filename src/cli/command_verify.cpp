@@ -30,6 +30,10 @@ Action addVerifyCommand(CLI::App& app) {
   cmd->add_option("--segments", s->options.segments, "Random segments between listed pairs")
       ->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
   cmd->add_option("--seed", s->options.seed, "Random seed");
+  cmd->add_option("--tightness-pairs", s->options.tightnessPairs,
+                  "Listed pairs sampled for the tightness figure (48 segments each)")
+      ->capture_default_str()
+      ->check(CLI::Range(uint64_t{0}, uint64_t{100'000'000}));
   cmd->add_flag("--json", s->json, "Print the report as JSON on stdout");
   return [s] {
     const std::filesystem::path dir(s->dir);
@@ -50,6 +54,9 @@ Action addVerifyCommand(CLI::App& app) {
                                 {"contact_first_hits", v.contactFirstHits},
                                 {"contact_rays", v.contactRays},
                                 {"invalid_pairs", v.invalidPairs},
+                                {"tightness_pairs", v.tightnessPairs},
+                                {"excess_pairs", v.excess},
+                                {"excess", v.tightnessPairs ? double(v.excess) / double(v.tightnessPairs) : 0.0},
                                 {"examples", v.examples},
                                 {"ok", v.ok()}};
       fmt::print("{}\n", j.dump(2));
@@ -77,6 +84,12 @@ Action addVerifyCommand(CLI::App& app) {
           "(faces in contact; not violations): {}\n",
           v.contactRays);
     if (v.invalidPairs) fmt::print("pairs naming patches that do not exist: {}\n", v.invalidPairs);
+    if (v.tightnessPairs)
+      fmt::print(
+          "tightness: {} of {} sampled listed pairs ({:.1f} %) have no free segment among {} "
+          "(excess; at most 50 % means the list is at most about twice what rays see)\n",
+          v.excess, v.tightnessPairs, 100.0 * double(v.excess) / double(v.tightnessPairs),
+          kTightnessSegments);
     for (const std::string& e : v.examples) fmt::print("  {}\n", e);
     fmt::print("{}\n", v.ok() ? "OK: no violation" : "FAILED: violations found");
     return v.ok() ? 0 : 1;

@@ -190,6 +190,34 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
   }
 
   if (graph.interactions.empty()) return report;
+  // Tightness: a segment is free when the offset segment meets nothing (Embree) or what it
+  // meets the segment between the sampled points does not cross (as above).
+  for (uint64_t i = 0; i < options.tightnessPairs; ++i) {
+    const Interaction& in = graph.interactions[rng() % graph.interactions.size()];
+    if (in.r >= n) continue;
+    const ConvexPolygon& sp = scene.patches[in.s].polygon;
+    const ConvexPolygon& rp = scene.patches[in.r].polygon;
+    bool free = false;
+    int tried = 0;
+    for (int k = 0; k < kTightnessSegments * 4 && tried < kTightnessSegments && !free; ++k) {
+      const Vec3 p = pointOn(sp, rng), q = pointOn(rp, rng);
+      if (sp.plane.distance(q) <= eps || rp.plane.distance(p) <= eps) continue;
+      ++tried;
+      const Vec3 p1 = p + sp.normal() * offset, q1 = q + rp.normal() * offset;
+      if (!rays.occluded(p1, q1, in.s, in.r)) {
+        free = true;
+        break;
+      }
+      const auto first = confirmedFirstHit(rays, scene, p1, q1 - p1, 1.0, in.s, in.r, offset, eps);
+      const double tContact = offset / std::max(length(q - p), offset);
+      if (!first || !crossesInDouble(scene.patches[first->patch].polygon, p, q - p, tContact,
+                                     1 - tContact, eps))
+        free = true;
+    }
+    if (tried == 0) continue;  // no front-to-front segment found: not a pair rays can judge
+    ++report.tightnessPairs;
+    if (!free) ++report.excess;
+  }
   for (uint64_t i = 0; i < options.segments; ++i) {
     const Interaction& in = graph.interactions[rng() % graph.interactions.size()];
     if (in.r >= n) continue;

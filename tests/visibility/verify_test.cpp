@@ -154,3 +154,33 @@ TEST(VerifyChecks, AListedBlockerMetWithinTheContactDistanceIsTheFirstHit) {
 
 }  // namespace
 }  // namespace gv
+
+namespace gv {
+namespace {
+
+TEST(VerifyTightness, APairBehindAWholeWallIsExcessAndAnOpenPairIsNot) {
+  // S and R face each other across x = 1.5; a wall there (facing S) hides all of R or, cut to a
+  // half-height fence, only part of it. Listing the pair is conservative either way; only the
+  // first listing is excess.
+  GreyScene g(4);
+  g.add({{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});          // S at x = 0, facing +x
+  g.add({{3, 0, 0}, {3, 0, 1}, {3, 1, 1}, {3, 1, 0}});          // R at x = 3, facing -x
+  g.add({{1.5, -1, -1}, {1.5, -1, 2}, {1.5, 2, 2}, {1.5, 2, -1}});  // the wall, facing -x
+  VisibilityGraph graph;
+  graph.interactions = {{0, 1, {2}}};
+  VerifyOptions o;
+  o.rays = 0;
+  o.segments = 0;
+  o.tightnessPairs = 50;
+  const VerifyReport hidden = verifyVisibility(g.scene, graph, o);
+  EXPECT_EQ(hidden.tightnessPairs, 50u);
+  EXPECT_EQ(hidden.excess, 50u);
+  g.scene.patches[2].polygon = *ConvexPolygon::fromVertices(
+      {{1.5, -1, -1}, {1.5, -1, 0.5}, {1.5, 2, 0.5}, {1.5, 2, -1}}, Tolerance{4});
+  const VerifyReport fence = verifyVisibility(g.scene, graph, o);
+  EXPECT_EQ(fence.tightnessPairs, 50u);
+  EXPECT_EQ(fence.excess, 0u);
+}
+
+}  // namespace
+}  // namespace gv
