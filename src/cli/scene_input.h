@@ -12,7 +12,8 @@
 namespace gv::cli {
 
 struct SceneInputOptions {
-  bool contactSplit = false;  ///< radiosity and photons: cut patches at contacts
+  bool contactSplit = false;  ///< radiosity and photons: cut patches at contacts, and partly
+                              ///< hidden patches to their parts in air
   bool keepHidden = false;    ///< keep faces inside closed solids and coincident twins
 };
 
