@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <optional>
 
@@ -76,14 +77,15 @@ std::optional<Seen> firstFront(const Scene& scene, const EmbreeScene& rays, Vec3
   return std::nullopt;
 }
 
-/// Σ (light + floor)·√distance over a set of rays, per ray: lit surfaces far away score most,
-/// a near wall filling half the picture scores little however bright or far the other half is.
+/// The mean of (light + floor)·distance over a set of rays: lit surfaces far away score most, a
+/// near wall scores little however bright. Linear in the distance: with √distance a near wall in
+/// full sky light outscored the view across q3-oa_dm2's courtyard.
 struct RayTally {
   double sum = 0;
   int count = 0;
   void add(double l, double t, double lightFloor) {
     ++count;
-    sum += (l + lightFloor) * std::sqrt(t);
+    sum += (l + lightFloor) * t;
   }
   double score() const { return count == 0 ? 0 : sum / count; }
 };
@@ -182,14 +184,14 @@ std::vector<AirPoint> findAirPoints(const Scene& scene, const EmbreeScene& rays,
         for (const Vec3& d : directions) {
           const std::optional<RayHit> hit = rays.firstHit(p.eye, d);
           const double t = hit ? std::min(hit->t, cap) : cap;
-          p.openness += std::sqrt(t);
+          p.openness += t;
           if (!hit) {
             ++misses;
           } else if (dot(scene.patches[hit->patch].polygon.normal(), d) >= 0) {
             ++backs;
           } else {
             p.light += light[hit->patch];
-            p.litOpenness += light[hit->patch] * std::sqrt(t);
+            p.litOpenness += light[hit->patch] * t;
           }
         }
         if (16 * backs > kSurveyRays || 16 * misses > kSurveyRays) continue;
@@ -242,12 +244,26 @@ Camera interiorCamera(const Scene& scene, const EmbreeScene& rays, std::span<con
   const auto surveyScore = [&](const AirPoint& p) {
     return p.litOpenness + lightFloor * p.openness;
   };
+  // Large open spaces only: a pocket of air beside a lamp is the brightest place of a level and
+  // shows nothing. Of the points at least as open as the median, the best distinct eyes.
+  std::vector<double> openness;
+  for (const AirPoint& p : airPoints) openness.push_back(p.openness);
+  const auto middle = openness.begin() + static_cast<std::ptrdiff_t>(openness.size() / 2);
+  std::nth_element(openness.begin(), middle, openness.end());
   std::vector<const AirPoint*> ranked;
-  for (const AirPoint& p : airPoints) ranked.push_back(&p);
-  const size_t keep = std::min(kViewCandidates, ranked.size());
-  std::partial_sort(
-      ranked.begin(), ranked.begin() + keep, ranked.end(),
-      [&](const AirPoint* a, const AirPoint* b) { return surveyScore(*a) > surveyScore(*b); });
+  for (const AirPoint& p : airPoints)
+    if (p.openness >= *middle) ranked.push_back(&p);
+  std::sort(ranked.begin(), ranked.end(), [&](const AirPoint* a, const AirPoint* b) {
+    return surveyScore(*a) > surveyScore(*b);
+  });
+  const double same = scene.tolerance().length();
+  std::vector<const AirPoint*> candidates;
+  for (const AirPoint* p : ranked) {
+    if (candidates.size() == kViewCandidates) break;
+    if (std::none_of(candidates.begin(), candidates.end(),
+                     [&](const AirPoint* q) { return distance(p->eye, q->eye) <= same; }))
+      candidates.push_back(p);
+  }
   const int h0 = (upAxis + 1) % 3, h1 = (upAxis + 2) % 3;
   const double pitch = kInteriorPitchDegrees * kDegrees;
   Camera best = base;
@@ -255,9 +271,9 @@ Camera interiorCamera(const Scene& scene, const EmbreeScene& rays, std::span<con
   best.fovYDegrees = kInteriorFovDegrees;
   best.up = up;
   double bestScore = -1;
-  for (size_t c = 0; c < keep; ++c) {
+  for (const AirPoint* candidate : candidates) {
     Camera view = best;
-    view.eye = ranked[c]->eye;
+    view.eye = candidate->eye;
     for (int a = 0; a < kViewAzimuths; ++a) {
       const double azimuth = 2 * std::numbers::pi * a / kViewAzimuths;
       const Vec3 horizontal = std::cos(azimuth) * axis(h0) + std::sin(azimuth) * axis(h1);

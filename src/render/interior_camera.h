@@ -16,9 +16,9 @@ namespace gv {
 /// A candidate viewpoint in the air of a scene and what rays from it see.
 struct AirPoint {
   Vec3 eye;
-  double openness = 0;     ///< mean √(free distance) of the survey rays (a miss: the diagonal)
+  double openness = 0;     ///< mean free distance of the survey rays (a miss: the diagonal)
   double light = 0;        ///< mean light (patchLight) of the fronts the survey rays hit first
-  double litOpenness = 0;  ///< mean light·√(free distance) of those fronts
+  double litOpenness = 0;  ///< mean light·(free distance) of those fronts
   bool enclosed = false;   ///< every survey ray hits a front: no way out of the scene from here
 };
 
@@ -46,12 +46,14 @@ std::vector<AirPoint> findAirPoints(const Scene& scene, const EmbreeScene& rays,
 /// as the renderer finds them (backs culled, the cutaway applied). 0 when no pixel sees anything.
 double shellFraction(const Scene& scene, const EmbreeScene& rays, const Camera& camera);
 
-/// The interior view: among the best-scored air points (score: the mean over the survey rays of
-/// (light + δ)·√(free distance), δ a small constant so that openness decides in the dark; lit
-/// surfaces far away count most), the point and horizontal direction (pitched kInteriorPitchDegrees
-/// down) whose picture, sampled on a coarse grid with backs culled, scores best the same way per
-/// pixel: a near wall filling half the view scores little. Field of view kInteriorFovDegrees, `up`
-/// along upAxis, no cutaway; image size from `base`. `airPoints` must not be empty.
+/// The interior view: among the air points at least as open as their median (a pocket of air
+/// beside a lamp is bright and shows nothing), the best-scored distinct eyes (score: the mean over
+/// the survey rays of (light + δ)·(free distance), δ a small constant so that openness decides in
+/// the dark; lit surfaces far away count most), the point and horizontal direction (pitched
+/// kInteriorPitchDegrees down) whose picture, sampled on a coarse grid with backs culled, scores
+/// best the same way per pixel: a near wall filling half the view scores little. Field of view
+/// kInteriorFovDegrees, `up` along upAxis, no cutaway; image size from `base`. `airPoints` must not
+/// be empty.
 Camera interiorCamera(const Scene& scene, const EmbreeScene& rays, std::span<const double> light,
                       const std::vector<AirPoint>& airPoints, int upAxis, const Camera& base);
 
