@@ -1,5 +1,5 @@
 // Default viewpoints: a roofless bird's-eye view of flat scenes, a view into the open side of
-// box-like ones.
+// box-like ones, and a view from inside closed levels.
 #include "render/default_camera.h"
 
 #include <algorithm>
@@ -8,6 +8,9 @@
 #include <numbers>
 #include <optional>
 #include <vector>
+
+#include "raycast/embree_scene.h"
+#include "render/interior_camera.h"
 
 namespace gv {
 namespace {
@@ -22,6 +25,8 @@ constexpr double kCutBelowCeiling = 0.03;
 constexpr double kOpenSideFraction = 0.01;
 /// A first hit this close to the box's near face (fraction of its depth) is an outer wall.
 constexpr double kShellFraction = 0.02;
+/// The emitters' area vector picks the up axis when this fraction of it lies along one axis.
+constexpr double kUpAxisDominance = 0.7;
 /// Margin around the fitted box (fraction of the fitting distance).
 constexpr double kFitMargin = 1.05;
 
@@ -119,6 +124,21 @@ void peelOuterShell(const Scene& scene, const Aabb& box, int depthAxis, Camera& 
   }
 }
 
+/// The up axis of a box-like scene seen from inside: lights hang under ceilings, so the axis
+/// along which the emitters' area vector points (downwards) when it clearly dominates; else the
+/// box's shortest axis, as for flat scenes (a Quake level converted z up whose box is not quite
+/// flat, lit by trims on every side of its light brushes, whose area vector is zero).
+int interiorUpAxis(const Scene& scene, int shortestAxis) {
+  Vec3 down{};
+  for (const Patch& p : scene.patches)
+    if (scene.materials[p.material].isEmitter())
+      down = down + p.polygon.area() * p.polygon.normal();
+  int a = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::abs(down[k]) > std::abs(down[a])) a = k;
+  return down[a] < 0 && -down[a] > kUpAxisDominance * length(down) ? a : shortestAxis;
+}
+
 Camera boxSceneCamera(const Scene& scene, const Aabb& box, Camera c) {
   const int upAxis = 1;
   const std::array<Vec3, 4> directions{axis(2), -axis(2), axis(0), -axis(0)};
@@ -151,6 +171,11 @@ Camera boxSceneCamera(const Scene& scene, const Aabb& box, Camera c) {
 }  // namespace
 
 Camera defaultCamera(const Scene& scene, int width, int height) {
+  return defaultCamera(scene, {}, width, height);
+}
+
+Camera defaultCamera(const Scene& scene, std::span<const Rgb> patchRadiosity, int width,
+                     int height) {
   Camera c;
   c.width = width;
   c.height = height;
@@ -164,8 +189,23 @@ Camera defaultCamera(const Scene& scene, int width, int height) {
   const Vec3 e = box.extent();
   std::array<int, 3> order{0, 1, 2};
   std::sort(order.begin(), order.end(), [&](int a, int b) { return e[a] < e[b]; });
-  if (e[order[0]] < kFlatRatio * e[order[1]]) return flatSceneCamera(scene, box, order[0], c);
-  return boxSceneCamera(scene, box, c);
+  const bool flat = e[order[0]] < kFlatRatio * e[order[1]];
+  const int upAxis = flat ? order[0] : interiorUpAxis(scene, order[0]);
+  const Camera outside =
+      flat ? flatSceneCamera(scene, box, upAxis, c) : boxSceneCamera(scene, box, c);
+  // A closed level from outside: a flat one's picture is mostly shell (roofs and outer walls
+  // facing the void, lit by nothing, or floors seen through culled ceilings); a box-like one is
+  // a closed room the camera stands outside of (its air points see no way out). Either way,
+  // look from inside.
+  const EmbreeScene rays(scene);
+  if (flat && shellFraction(scene, rays, outside) <= kMaxShellFraction) return outside;
+  const std::vector<double> light = patchLight(scene, rays, patchRadiosity);
+  const std::vector<AirPoint> air = findAirPoints(scene, rays, light, upAxis);
+  if (air.empty()) return outside;
+  const auto enclosed =
+      std::count_if(air.begin(), air.end(), [](const AirPoint& p) { return p.enclosed; });
+  if (!flat && 2 * static_cast<size_t>(enclosed) < air.size()) return outside;
+  return interiorCamera(scene, rays, light, air, upAxis, c);
 }
 
 }  // namespace gv

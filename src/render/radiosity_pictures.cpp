@@ -69,8 +69,9 @@ PictureStats writeRadiosityPictures(const Scene& scene, const RadiosityResult& r
                                     const PictureOptions& options) {
   const auto start = Clock::now();
   PictureStats stats;
-  stats.camera =
-      options.camera ? *options.camera : defaultCamera(scene, options.width, options.height);
+  stats.camera = options.camera
+                     ? *options.camera
+                     : defaultCamera(scene, result.patchRadiosity, options.width, options.height);
   const Camera& camera = stats.camera;
   camera.validate();
 
