@@ -24,15 +24,6 @@
 namespace gv {
 namespace {
 
-/// Signed solid angle of triangle (a, b, c) seen from the origin (Van Oosterom & Strackee 1983):
-/// positive when a · (b × c) > 0, i.e. the triangle runs clockwise seen from the origin.
-double solidAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
-  const double la = length(a), lb = length(b), lc = length(c);
-  const double det = dot(a, cross(b, c));
-  const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-  return 2 * std::atan2(det, den);
-}
-
 /// The fragment `p` clipped to the cell, without the cell's halfspaces that `p` lies on (those
 /// would cut a patch lying on the cell's boundary at rounding depth).
 std::optional<ConvexPolygon> pieceInCell(const ConvexPolygon& p, const ConvexPolyhedron& cell,
@@ -56,18 +47,6 @@ struct Piece {
 };
 
 }  // namespace
-
-double windingNumber(const Scene& scene, const Vec3& p) {
-  double sum = 0;
-  for (const Patch& patch : scene.patches) {
-    const auto& v = patch.polygon.vertices;
-    const Vec3 a = v[0] - p;
-    for (size_t i = 1; i + 1 < v.size(); ++i) sum += solidAngle(a, v[i] - p, v[i + 1] - p);
-  }
-  // Counter-clockwise seen from the front = outward: from a point inside, each face's triangle
-  // (vertices minus p) has a positive triple product, and a closed solid adds up to 4 pi.
-  return sum / (4 * std::numbers::pi);
-}
 
 Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
                         HiddenFaceReport* report) {
@@ -103,9 +82,10 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
 
   // Solid cells: only those some piece looks into matter.
   std::vector<uint8_t> solid(nCells, 0);
+  const WindingNumberField winding(scene);
   tbb::parallel_for(size_t{0}, nCells, [&](size_t c) {
     if (pieces[c].empty()) return;
-    solid[c] = windingNumber(scene, sub.cells[c].shape.centroid()) >= kSolidWindingNumber;
+    solid[c] = winding.at(sub.cells[c].shape.centroid()) >= kSolidWindingNumber;
   });
 
   // Per patch: its pieces in air, after the earlier same-facing patches on its plane in the same

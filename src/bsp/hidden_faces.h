@@ -9,6 +9,7 @@
 #include <cstddef>
 
 #include "scene/scene.h"
+#include "scene/winding_number.h"
 
 namespace gv {
 
@@ -47,9 +48,5 @@ struct HiddenFaceReport {
 /// `report` (if given) counts what happened.
 Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options = {},
                         HiddenFaceReport* report = nullptr);
-
-/// The generalized winding number of the scene's patches at p (+1 inside an outward-facing
-/// closed solid, 0 outside, fractions near open surfaces). O(patches).
-double windingNumber(const Scene& scene, const Vec3& p);
 
 }  // namespace gv
