@@ -71,8 +71,7 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
     const Cell& cell = sub.cells[c];
     const Vec3 inside = cell.shape.centroid();
     for (uint32_t p : cell.patches) {
-      if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p))
-        continue;
+      if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p)) continue;
       const ConvexPolygon& poly = scene.patches[p].polygon;
       if (poly.plane.distance(inside) <= 0) continue;  // faces out of this cell
       if (auto piece = pieceInCell(poly, cell.shape, tol))

@@ -28,12 +28,12 @@ struct HiddenFaceOptions {
 };
 
 struct HiddenFaceReport {
-  size_t hidden = 0;          ///< patches dropped whole: their front looks only into solid
-  size_t partlyHidden = 0;    ///< patches cut to the parts whose front looks into air
-  size_t coincident = 0;      ///< patches dropped whole as a same-facing twin of an earlier one
+  size_t hidden = 0;            ///< patches dropped whole: their front looks only into solid
+  size_t partlyHidden = 0;      ///< patches cut to the parts whose front looks into air
+  size_t coincident = 0;        ///< patches dropped whole as a same-facing twin of an earlier one
   size_t partlyCoincident = 0;  ///< patches cut where an earlier same-facing patch covers them
-  size_t piecesOut = 0;       ///< pieces the cut patches became
-  size_t partlyKept = 0;      ///< partly hidden or covered patches kept whole (!cutPartly)
+  size_t piecesOut = 0;         ///< pieces the cut patches became
+  size_t partlyKept = 0;        ///< partly hidden or covered patches kept whole (!cutPartly)
   bool changed() const { return hidden + partlyHidden + coincident + partlyCoincident > 0; }
 };
 

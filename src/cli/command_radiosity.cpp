@@ -9,8 +9,8 @@
 
 #include "bsp/subdivision.h"
 #include "cli/commands.h"
-#include "cli/scene_input.h"
 #include "cli/output_files.h"
+#include "cli/scene_input.h"
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"

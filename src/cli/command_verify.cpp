@@ -42,23 +42,24 @@ Action addVerifyCommand(CLI::App& app) {
     const VisibilityGraph graph = readVisibilityTxt((dir / "visibility.txt").string());
     const VerifyReport v = verifyVisibility(scene, graph, s->options);
     if (s->json) {
-      const nlohmann::json j = {{"dir", s->dir},
-                                {"rays", v.rays},
-                                {"rays_hitting_front", v.raysHittingFront},
-                                {"missing_pairs", v.missingPairs},
-                                {"segments", v.segments},
-                                {"blocked_segments", v.blockedSegments},
-                                {"blocked_visible", v.blockedVisible},
-                                {"missing_blockers", v.missingBlockers},
-                                {"offset_only_hits", v.offsetOnlyHits},
-                                {"contact_first_hits", v.contactFirstHits},
-                                {"contact_rays", v.contactRays},
-                                {"invalid_pairs", v.invalidPairs},
-                                {"tightness_pairs", v.tightnessPairs},
-                                {"excess_pairs", v.excess},
-                                {"excess", v.tightnessPairs ? double(v.excess) / double(v.tightnessPairs) : 0.0},
-                                {"examples", v.examples},
-                                {"ok", v.ok()}};
+      const nlohmann::json j = {
+          {"dir", s->dir},
+          {"rays", v.rays},
+          {"rays_hitting_front", v.raysHittingFront},
+          {"missing_pairs", v.missingPairs},
+          {"segments", v.segments},
+          {"blocked_segments", v.blockedSegments},
+          {"blocked_visible", v.blockedVisible},
+          {"missing_blockers", v.missingBlockers},
+          {"offset_only_hits", v.offsetOnlyHits},
+          {"contact_first_hits", v.contactFirstHits},
+          {"contact_rays", v.contactRays},
+          {"invalid_pairs", v.invalidPairs},
+          {"tightness_pairs", v.tightnessPairs},
+          {"excess_pairs", v.excess},
+          {"excess", v.tightnessPairs ? double(v.excess) / double(v.tightnessPairs) : 0.0},
+          {"examples", v.examples},
+          {"ok", v.ok()}};
       fmt::print("{}\n", j.dump(2));
       return v.ok() ? 0 : 1;
     }

@@ -9,8 +9,8 @@
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
-#include "cli/scene_input.h"
 #include "cli/output_files.h"
+#include "cli/scene_input.h"
 #include "scene/scene_io.h"
 #include "util/input_error.h"
 #include "util/progress_bar.h"
@@ -47,13 +47,14 @@ Action addVisCommand(CLI::App& app) {
                       "most half the patches' area inside them (bsp/subdivision.h)")
           ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--cell-budget", s->propagation.cellSequenceBudget,
-                  "Portal sequences one cell-to-cell search (one directed portal) may test before "
-                  "it answers with everything it might reach (0 = no limit; conservative either "
-                  "way)")
+                  "Portal sequences one cell-to-cell search (one directed portal) may test; past "
+                  "it, the branches not yet explored are answered with every cell they might "
+                  "reach (0 = no limit; conservative either way)")
       ->capture_default_str();
   cmd->add_option("--patch-budget", s->propagation.patchSequenceBudget,
-                  "Stabbing tests one source patch's search may run before it answers with every "
-                  "patch its cell may see (0 = no limit; conservative either way)")
+                  "Stabbing tests one source patch's search may run; past it, the branches not "
+                  "yet explored are answered with every patch they might reach (0 = no limit; "
+                  "conservative either way)")
       ->capture_default_str();
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   addKeepHiddenFlag(*cmd, s->keepHidden);
@@ -113,8 +114,9 @@ Action addVisCommand(CLI::App& app) {
         v.cellStabbingTests, v.patchStabbingTests, v.unresolvedStabbing, v.meanSequenceLength);
     if (v.cellSearchesOverBudget + v.patchSearchesOverBudget > 0)
       fmt::print(
-          "searches over budget, answered with all they might reach: {} of {} directed portals "
-          "(--cell-budget), {} of {} source patches (--patch-budget)\n",
+          "searches over budget (their unexplored branches answered with all they might "
+          "reach): {} of {} directed portals (--cell-budget), {} of {} source patches "
+          "(--patch-budget)\n",
           v.cellSearchesOverBudget, 2 * v.portals, v.patchSearchesOverBudget, v.patches);
     fmt::print("blockers per PARTIAL pair {:.2f} (shaft cull {:.2f})\n", v.meanBlockersPerPartial,
                v.meanShaftCullPerPartial);

@@ -1,8 +1,8 @@
 #include "cli/scene_input.h"
 
 #include "bsp/hidden_faces.h"
-#include "scene/contact_split.h"
 #include "input/load_scene.h"
+#include "scene/contact_split.h"
 
 namespace gv::cli {
 namespace {

@@ -3,9 +3,8 @@
 // twins (bsp/hidden_faces.h).
 #pragma once
 
-#include <string>
-
 #include <CLI/CLI.hpp>
+#include <string>
 
 #include "scene/scene.h"
 

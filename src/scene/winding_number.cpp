@@ -72,10 +72,11 @@ int32_t WindingNumberField::build(uint32_t first, uint32_t count) {
   const Vec3 ext = box.extent();
   const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
   const uint32_t half = count / 2;
-  std::nth_element(triangles_.begin() + first, triangles_.begin() + first + half,
-                   triangles_.begin() + first + count, [axis](const Triangle& l, const Triangle& r) {
-                     return (l.a[axis] + l.b[axis] + l.c[axis]) < (r.a[axis] + r.b[axis] + r.c[axis]);
-                   });
+  std::nth_element(
+      triangles_.begin() + first, triangles_.begin() + first + half,
+      triangles_.begin() + first + count, [axis](const Triangle& l, const Triangle& r) {
+        return (l.a[axis] + l.b[axis] + l.c[axis]) < (r.a[axis] + r.b[axis] + r.c[axis]);
+      });
   const int32_t left = build(first, half);
   const int32_t right = build(first + half, count - half);
   nodes_[size_t(id)].left = left;
@@ -85,7 +86,7 @@ int32_t WindingNumberField::build(uint32_t first, uint32_t count) {
 
 double WindingNumberField::at(const Vec3& p) const {
   if (nodes_.empty()) return 0;
-  double sum = 0;  // in steradians
+  double sum = 0;      // in steradians
   int32_t stack[128];  // a median split is at most ~log2(triangles) deep: far below this
   int top = 0;
   stack[top++] = 0;

@@ -43,10 +43,11 @@ struct PropagationOptions {
   /// The searches give up (computeVisibility throws PropagationDeadlineExceeded) once the clock
   /// passes this: a time budget that also holds inside one long search (`globalvis bench`).
   Clock::time_point deadline = Clock::time_point::max();
-  /// Portal sequences one search may push before it stops and answers with everything it might
-  /// reach (0: no limit): per directed portal of the cell search, per source patch of the patch
-  /// searches. Conservative either way (a stopped search lists more, never less); they bound the
-  /// time of the few searches that fan out combinatorially on real levels. Counted in
+  /// What one search may test (0: no limit): portal sequences per directed portal of the cell
+  /// search, stabbing tests per source patch of the patch searches. Past it, the branches the
+  /// search has not explored yet are answered untested with everything they might reach, and the
+  /// explored ones keep their answers: conservative either way (more listed, never less). They
+  /// bound the time of the searches that fan out combinatorially on real levels. Counted in
   /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget.
   uint64_t cellSequenceBudget = kDefaultCellSequenceBudget;
   uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;

@@ -58,8 +58,8 @@ Vec3 cosineDirection(const Vec3& n, std::mt19937_64& rng) {
 
 /// Where origin + t·d crosses `poly` in double precision, if at a t in [tMin, tMax]. (A crossing
 /// point on the polygon's boundary within `eps` counts as crossing.)
-std::optional<double> crossingInDouble(const ConvexPolygon& poly, const Vec3& origin,
-                                       const Vec3& d, double tMin, double tMax, double eps) {
+std::optional<double> crossingInDouble(const ConvexPolygon& poly, const Vec3& origin, const Vec3& d,
+                                       double tMin, double tMax, double eps) {
   const Vec3& n = poly.plane.normal;
   const double den = dot(n, d);
   if (std::abs(den) <= 1e-12 * length(n) * length(d)) return std::nullopt;  // in the plane
@@ -81,9 +81,9 @@ bool crossesInDouble(const ConvexPolygon& poly, const Vec3& origin, const Vec3& 
 
 /// The first patch other than `a` and `b` that origin + t·d crosses in double precision at a t
 /// in [tMin, tMax]: a scan of every patch, for the few hits whose segment ends are in doubt.
-std::optional<uint32_t> firstCrossingInDouble(const Scene& scene, const Vec3& origin,
-                                              const Vec3& d, double tMin, double tMax, uint32_t a,
-                                              uint32_t b, double eps) {
+std::optional<uint32_t> firstCrossingInDouble(const Scene& scene, const Vec3& origin, const Vec3& d,
+                                              double tMin, double tMax, uint32_t a, uint32_t b,
+                                              double eps) {
   std::optional<uint32_t> first;
   double best = INFINITY;
   for (size_t k = 0; k < scene.patches.size(); ++k) {
@@ -268,8 +268,8 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
       // The segment itself may meet another patch first, closer to its end than the offset:
       // one lying on S or R within that distance (a solid's face resting on a wall piece that
       // is a little out of line). The contract's first hit is that one.
-      const auto exact = firstCrossingInDouble(scene, start, end - start, tExact, 1 - tExact,
-                                               in.s, in.r, eps);
+      const auto exact =
+          firstCrossingInDouble(scene, start, end - start, tExact, 1 - tExact, in.s, in.r, eps);
       if (exact && *exact != hit->patch && isBlocker(*exact)) {
         ++report.contactFirstHits;
         continue;

@@ -49,7 +49,7 @@ struct VerifyReport {
   /// wall's foot on a floor, both a little out of true): a gap below the scene's resolution, so
   /// not a sightline of the contract; counted, not violations.
   uint64_t contactRays = 0;
-  uint64_t invalidPairs = 0;          ///< listed pairs with ids out of range
+  uint64_t invalidPairs = 0;  ///< listed pairs with ids out of range
   /// Tightness: listed pairs sampled (uniformly among the listed ones) and, of them, those for
   /// which none of kTightnessSegments front-to-front segments is free: listed beyond what rays
   /// see. excess / tightnessPairs at most 0.5 means the list is at most about twice the visible

@@ -39,7 +39,7 @@ struct VisibilityStats {
   /// Cells in regions no patch faces into, and the portals among them (live_cells.h): left out
   /// of every search.
   size_t deadCells = 0, deadPortals = 0;
-  uint64_t cellPairsVisible = 0;    ///< ordered (source, reached) cell pairs, source included
+  uint64_t cellPairsVisible = 0;  ///< ordered (source, reached) cell pairs, source included
   /// Searches stopped by their budget and answered conservatively (PropagationOptions::
   /// cellSequenceBudget, patchSequenceBudget): directed portals of the cell search, source patches.
   uint64_t cellSearchesOverBudget = 0, patchSearchesOverBudget = 0;

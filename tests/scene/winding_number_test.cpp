@@ -25,7 +25,8 @@ double worstError(const Scene& scene, int points, uint32_t seed) {
   std::uniform_real_distribution<double> u(0, 1);
   double worst = 0;
   for (int i = 0; i < points; ++i) {
-    const Vec3 p{box.lo.x + u(rng) * (box.hi.x - box.lo.x), box.lo.y + u(rng) * (box.hi.y - box.lo.y),
+    const Vec3 p{box.lo.x + u(rng) * (box.hi.x - box.lo.x),
+                 box.lo.y + u(rng) * (box.hi.y - box.lo.y),
                  box.lo.z + u(rng) * (box.hi.z - box.lo.z)};
     worst = std::max(worst, std::abs(field.at(p) - windingNumber(scene, p)));
   }

@@ -79,8 +79,8 @@ struct GreyScene {
   Scene scene;
   uint32_t grey;
   double size;
-  explicit GreyScene(double size_) : grey(scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}})),
-                                     size(size_) {}
+  explicit GreyScene(double size_)
+      : grey(scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}})), size(size_) {}
   void add(const std::vector<Vec3>& v) {
     Patch p;
     p.polygon = *ConvexPolygon::fromVertices(v, Tolerance{size});
@@ -163,8 +163,8 @@ TEST(VerifyTightness, APairBehindAWholeWallIsExcessAndAnOpenPairIsNot) {
   // half-height fence, only part of it. Listing the pair is conservative either way; only the
   // first listing is excess.
   GreyScene g(4);
-  g.add({{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});          // S at x = 0, facing +x
-  g.add({{3, 0, 0}, {3, 0, 1}, {3, 1, 1}, {3, 1, 0}});          // R at x = 3, facing -x
+  g.add({{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}});              // S at x = 0, facing +x
+  g.add({{3, 0, 0}, {3, 0, 1}, {3, 1, 1}, {3, 1, 0}});              // R at x = 3, facing -x
   g.add({{1.5, -1, -1}, {1.5, -1, 2}, {1.5, 2, 2}, {1.5, 2, -1}});  // the wall, facing -x
   VisibilityGraph graph;
   graph.interactions = {{0, 1, {2}}};
