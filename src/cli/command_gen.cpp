@@ -1,4 +1,5 @@
-// `globalvis gen NAME [options] -o FILE.obj`: the built-in scenes (Cornell box, office, maze).
+// `globalvis gen NAME [options] -o FILE.obj`: the built-in scenes (Cornell box, office, maze,
+// furnished room).
 #include <fmt/core.h>
 
 #include <chrono>
@@ -6,6 +7,7 @@
 
 #include "cli/commands.h"
 #include "generators/cornell_box.h"
+#include "generators/furnished_room.h"
 #include "generators/generators.h"
 #include "generators/maze.h"
 #include "generators/office.h"
@@ -22,6 +24,7 @@ struct GenState {
   OfficeOptions office;
   size_t officePatches = 0;  ///< 0: use floors/rows/columns as given
   MazeOptions maze;
+  FurnishedRoomOptions room;
 };
 
 void addOutputOption(CLI::App* cmd, GenState& s) {
@@ -39,8 +42,8 @@ const std::string& describe(const std::string& name) {
 }  // namespace
 
 Action addGenCommand(CLI::App& app) {
-  auto* gen =
-      app.add_subcommand("gen", "Generate a built-in scene (cornell, office, maze) as OBJ+MTL");
+  auto* gen = app.add_subcommand(
+      "gen", "Generate a built-in scene (cornell, office, maze, room) as OBJ+MTL");
   gen->require_subcommand(1);
   auto s = std::make_shared<GenState>();
 
@@ -82,7 +85,17 @@ Action addGenCommand(CLI::App& app) {
   maze->add_option("--lights", s->maze.lights, "Light panels (0: one per 16 cells)")
       ->check(CLI::Range(0, 1000000));
 
-  return [s, cornell, office, maze]() {
+  auto* room = gen->add_subcommand("room", describe("room"));
+  addOutputOption(room, *s);
+  room->add_option("--chairs", s->room.chairs, "Chairs around the table")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 4));
+  room->add_flag("!--no-bookcase", s->room.bookcase, "No bookcase");
+  room->add_option("--light-emission", s->room.lightEmission, "Emitted radiosity of the lights")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+
+  return [s, cornell, office, maze, room]() {
     const auto start = Clock::now();
     Scene scene;
     std::string name;
@@ -99,6 +112,9 @@ Action addGenCommand(CLI::App& app) {
           s->office.columns = sized.columns;
         }
         scene = generateOffice(s->office);
+      } else if (room->parsed()) {
+        name = "room";
+        scene = generateFurnishedRoom(s->room);
       } else {
         name = "maze";
         scene = generateMaze(s->maze);

@@ -110,6 +110,27 @@ void printCounts(const nlohmann::json& c) {
   }
 }
 
+/// An earlier `photons` output directory as a PhotonResult: radiosity.txt, standard_error.txt
+/// and the photon count and per-photon power of its stats.json. Throws InputError naming the
+/// file when one is missing or was written for another patch count.
+PhotonResult readPhotonReference(const std::filesystem::path& dir, size_t patchCount) {
+  PhotonResult ref;
+  ref.radiosity = readRadiosityTxt((dir / "radiosity.txt").string(), patchCount);
+  ref.standardError = readRadiosityTxt((dir / "standard_error.txt").string(), patchCount);
+  const std::filesystem::path statsPath = dir / "stats.json";
+  const nlohmann::json stats = *readStatsJson(statsPath);
+  if (!stats.contains("photon_power") || !stats.contains("photons"))
+    throw InputError(statsPath.string(), 0,
+                     "no photons or photon_power: not a `globalvis photons` directory, or one "
+                     "written before photon_power was recorded (run photons again)");
+  ref.photons = stats["photons"].get<uint64_t>();
+  ref.rays = stats.value("rays", uint64_t{0});
+  const auto& power = stats["photon_power"];
+  ref.photonPower = {power.at(0).get<double>(), power.at(1).get<double>(),
+                     power.at(2).get<double>()};
+  return ref;
+}
+
 }  // namespace
 
 Action addPhotonsCommand(CLI::App& app) {
@@ -119,7 +140,7 @@ Action addPhotonsCommand(CLI::App& app) {
       "no mesh); writes patches.obj, radiosity.txt and standard_error.txt into a directory and "
       "optionally compares a `radiosity` run against it");
   struct State {
-    std::string scene, output, compare;
+    std::string scene, output, compare, reference;
     PhotonOptions options;
     double sigmas = 4, allowance = 0.01, regionSize = kDefaultRegionSize;
     bool keepHidden = false;
@@ -127,7 +148,8 @@ Action addPhotonsCommand(CLI::App& app) {
   };
   auto s = std::make_shared<State>();
   cmd->add_option("scene", s->scene, "Scene file (as `globalvis radiosity` reads it)")->required();
-  cmd->add_option("-o,--output", s->output, "Output directory (created if missing)")->required();
+  cmd->add_option("-o,--output", s->output,
+                  "Output directory (created if missing); required unless --reference is given");
   cmd->add_option("--photons", s->options.photons, "Photons shot in all")
       ->capture_default_str()
       ->check(CLI::Range(uint64_t{1000}, uint64_t{100'000'000'000}));
@@ -143,6 +165,11 @@ Action addPhotonsCommand(CLI::App& app) {
                   "channels were left out and why, leaks (lit patches where >= 10 photon hits "
                   "were expected and none came) and the worst region (exit code 1 on a leak or a "
                   "channel beyond --sigmas standard errors plus --allowance)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--reference", s->reference,
+                  "An earlier `photons` output directory of the same scene and options: compare "
+                  "--compare against it instead of shooting photons again (to compare several "
+                  "runs with one reference)")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--region-size", s->regionSize,
                   "With --compare: side of the region cubes (scene units) whose reflected power "
@@ -168,23 +195,38 @@ Action addPhotonsCommand(CLI::App& app) {
     if (!s->compare.empty())
       solver = readRadiosityTxt((std::filesystem::path(s->compare) / "radiosity.txt").string(),
                                 scene.patches.size());
-    const std::filesystem::path dir = makeOutputDirectory(s->output);
-    const auto t0 = Clock::now();
-    const EmbreeScene bvh(scene);
-    const PhotonResult ref = photonReference(scene, bvh, s->options);
-    const double seconds = secondsSince(t0);
-    writeObj(scene, (dir / "patches.obj").string());
-    const std::string what = fmt::format("{} photons in {} batches, seed {}", ref.photons,
-                                         s->options.batches, s->options.seed);
-    writePatchRgbTxt(ref.radiosity, "photon reference: radiosity per patch, " + what,
-                     (dir / "radiosity.txt").string());
-    writePatchRgbTxt(ref.standardError, "photon reference: standard error per patch, " + what,
-                     (dir / "standard_error.txt").string());
-    nlohmann::json stats = {{"photons", ref.photons},
-                            {"batches", s->options.batches},
-                            {"seed", s->options.seed},
-                            {"rays", ref.rays},
-                            {"seconds", seconds}};
+    if (s->output.empty() && s->reference.empty())
+      throw InputError(s->scene, 0, "photons needs -o DIR (or --reference DIR with --compare)");
+    if (!s->reference.empty() && s->compare.empty())
+      throw InputError(s->reference, 0, "--reference is only useful with --compare RUN");
+    PhotonResult ref;
+    double seconds = 0;
+    nlohmann::json stats;
+    std::filesystem::path dir;
+    if (!s->reference.empty()) {
+      ref = readPhotonReference(s->reference, scene.patches.size());
+      stats = {{"reference", s->reference}, {"photons", ref.photons}};
+      if (!s->output.empty()) dir = makeOutputDirectory(s->output);  // for stats.json only
+    } else {
+      dir = makeOutputDirectory(s->output);
+      const auto t0 = Clock::now();
+      const EmbreeScene bvh(scene);
+      ref = photonReference(scene, bvh, s->options);
+      seconds = secondsSince(t0);
+      writeObj(scene, (dir / "patches.obj").string());
+      const std::string what = fmt::format("{} photons in {} batches, seed {}", ref.photons,
+                                           s->options.batches, s->options.seed);
+      writePatchRgbTxt(ref.radiosity, "photon reference: radiosity per patch, " + what,
+                       (dir / "radiosity.txt").string());
+      writePatchRgbTxt(ref.standardError, "photon reference: standard error per patch, " + what,
+                       (dir / "standard_error.txt").string());
+      stats = {{"photons", ref.photons},
+               {"batches", s->options.batches},
+               {"seed", s->options.seed},
+               {"rays", ref.rays},
+               {"photon_power", {ref.photonPower.r, ref.photonPower.g, ref.photonPower.b}},
+               {"seconds", seconds}};
+    }
     int code = 0;
     if (!solver.empty()) {
       const PhotonComparison c =
@@ -209,13 +251,16 @@ Action addPhotonsCommand(CLI::App& app) {
                              {"regions", regionsJson(c)}};
       if (c.failures > 0 || c.channels.leaks > 0) code = 1;
     }
-    writeJsonFile(stats, dir / "stats.json");
+    if (!dir.empty()) writeJsonFile(stats, dir / "stats.json");
     if (s->json) {
       fmt::print("{}\n", stats.dump(2));
       return code;
     }
-    fmt::print("{} photons, {} rays, {:.2f} s; wrote {}\n", ref.photons, ref.rays, seconds,
-               dir.string());
+    if (!s->reference.empty())
+      fmt::print("{} photons read from {}\n", ref.photons, s->reference);
+    else
+      fmt::print("{} photons, {} rays, {:.2f} s; wrote {}\n", ref.photons, ref.rays, seconds,
+                 dir.string());
     if (stats.contains("comparison")) {
       const auto& c = stats["comparison"];
       fmt::print(

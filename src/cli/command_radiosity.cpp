@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "bsp/subdivision.h"
 #include "cli/commands.h"
@@ -14,12 +16,14 @@
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
+#include "radiosity/radiosity_quality.h"
 #include "radiosity/ray_visibility.h"
 #include "radiosity/shaft_visibility.h"
 #include "raycast/embree_scene.h"
 #include "render/radiosity_pictures.h"
 #include "scene/scene_io.h"
 #include "util/input_error.h"
+#include "util/peak_memory.h"
 #include "util/progress_bar.h"
 #include "util/timing.h"
 #include "visibility/propagation.h"
@@ -33,8 +37,9 @@ Action addRadiosityCommand(CLI::App& app) {
       "patches.obj, radiosity.txt, stats.json and elements.ply into a directory");
   struct State {
     std::string scene, output, visibility = "rays";
+    std::string quality{radiosityQualityLevel(kDefaultRadiosityQuality).name};
     int rays = 16;
-    bool quiet = false, json = false;
+    bool quiet = false, json = false, epsilonGiven = false;
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
     bool noPictures = false, flat = false, noContactSplit = false, keepHidden = false;
@@ -64,9 +69,24 @@ Action addRadiosityCommand(CLI::App& app) {
                                    "default: chosen as `vis` chooses it")
                        ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--rays", s->rays, "Visibility rays per link")->check(CLI::Range(1, 4096));
-  cmd->add_option("--epsilon", s->options.epsilon,
-                  "BF refinement threshold, as a fraction of the total emitted power")
-      ->check(CLI::PositiveNumber);
+  std::string qualityHelp = "Accuracy against time:";
+  for (const RadiosityQualityLevel& level : kRadiosityQualityLevels)
+    qualityHelp +=
+        fmt::format(" {} = {} (epsilon {:g});", level.name, level.summary, level.epsilon);
+  qualityHelp += " figures measured against light tracing in docs/BENCHMARKS.md";
+  std::vector<std::string> qualityNames;
+  for (const RadiosityQualityLevel& level : kRadiosityQualityLevels)
+    qualityNames.emplace_back(level.name);
+  auto* quality = cmd->add_option("--quality", s->quality, qualityHelp)
+                      ->capture_default_str()
+                      ->check(CLI::IsMember(qualityNames));
+  auto* epsilon =
+      cmd->add_option(
+             "--epsilon", s->options.epsilon,
+             "BF refinement threshold, as a fraction of the total emitted power (instead of "
+             "the one --quality sets; the default quality's other settings apply)")
+          ->check(CLI::PositiveNumber)
+          ->excludes(quality);
   cmd->add_option("--min-area", s->options.minArea,
                   "Smallest subdividable element, as a fraction of the total patch area")
       ->check(CLI::NonNegativeNumber);
@@ -90,8 +110,17 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--flat", s->flat, "Pictures with one colour per element instead of smooth");
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
-  return [s, coverage] {
+  return [s, coverage, epsilon] {
+    const auto start = Clock::now();
+    // The quality's settings, then an explicit --epsilon over them (with the default quality's
+    // other settings).
+    s->epsilonGiven = epsilon->count() > 0;
+    const double givenEpsilon = s->options.epsilon;
+    applyRadiosityQuality(parseRadiosityQuality(s->quality).value_or(kDefaultRadiosityQuality),
+                          s->options);
+    if (s->epsilonGiven) s->options.epsilon = givenEpsilon;
     const Scene scene = loadPipelineScene(s->scene, {!s->noContactSplit, s->keepHidden});
+    const double loadSeconds = secondsSince(start);
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     // Progress (a bar per refinement round, a line per round) only on a terminal.
     const bool progress = !s->quiet && stderrIsTerminal();
@@ -135,16 +164,28 @@ Action addRadiosityCommand(CLI::App& app) {
     } else if (s->visibility == "shaft") {
       visibility = std::make_unique<ShaftVisibility>(scene, s->rays);
     } else {
+      const auto t0 = Clock::now();
       bvh = std::make_unique<EmbreeScene>(scene);
       visibility = std::make_unique<RayVisibility>(scene, *bvh, s->rays);
+      visibilitySeconds = secondsSince(t0);
     }
     const RadiosityResult result = solveRadiosity(scene, *visibility, s->options);
     bar.reset();
 
+    const auto written = Clock::now();
     writeObj(scene, (dir / "patches.obj").string());
     writeRadiosityTxt(result, (dir / "radiosity.txt").string());
     writeElementsPly(result, (dir / "elements.ply").string());
+    const double writeSeconds = secondsSince(written);
+    double pictureSeconds = 0;
+    if (!s->noPictures) {
+      const PictureStats pictures = writeRadiosityPictures(
+          scene, result, dir, parsePictureOptions(s->camera, s->imageSize, s->flat));
+      pictureSeconds = pictures.seconds;
+      if (progress) std::cerr << fmt::format("pictures: {:.2f} s\n", pictures.seconds);
+    }
     nlohmann::json stats = radiosityStatsJson(result.stats, s->options, s->rays);
+    stats["options"]["quality"] = s->epsilonGiven ? "custom" : s->quality;
     if (const auto* blockers = dynamic_cast<const BlockerVisibility*>(visibility.get())) {
       stats["linespace"] = blockers->statsJson();
       stats["linespace"]["visibility_graph_seconds"] = visibilitySeconds;
@@ -152,12 +193,14 @@ Action addRadiosityCommand(CLI::App& app) {
     stats["contact_split"] = {{"enabled", !s->noContactSplit},
                               {"patches_split", scene.report.splitAtContacts},
                               {"pieces", scene.report.contactPieces}};
+    // Where the whole command's time and memory went (issue #19: every run says so).
+    const double peakBytes = peakResidentBytes();
+    stats["run"] = {
+        {"load_seconds", loadSeconds},           {"visibility_seconds", visibilitySeconds},
+        {"solve_seconds", result.stats.seconds}, {"write_seconds", writeSeconds},
+        {"picture_seconds", pictureSeconds},     {"total_seconds", secondsSince(start)},
+        {"peak_resident_bytes", peakBytes}};
     writeJsonFile(stats, dir / "stats.json");
-    if (!s->noPictures) {
-      const PictureStats pictures = writeRadiosityPictures(
-          scene, result, dir, parsePictureOptions(s->camera, s->imageSize, s->flat));
-      if (progress) std::cerr << fmt::format("pictures: {:.2f} s\n", pictures.seconds);
-    }
     if (s->json) {
       stats["scene"] = s->scene;
       stats["output"] = dir.string();
@@ -176,6 +219,11 @@ Action addRadiosityCommand(CLI::App& app) {
     fmt::print("{} rounds, {:.2f} s, {}; wrote {}\n", st.rounds.size(), st.seconds,
                st.converged ? "converged" : "NOT converged (raise --max-refinements)",
                dir.string());
+    fmt::print(
+        "quality {} (epsilon {:g}); whole command {:.2f} s (load {:.2f}, visibility {:.2f}, "
+        "solve {:.2f}, write {:.2f}, pictures {:.2f}), peak memory {:.0f} MB\n",
+        s->epsilonGiven ? "custom" : s->quality, s->options.epsilon, secondsSince(start),
+        loadSeconds, visibilitySeconds, st.seconds, writeSeconds, pictureSeconds, peakBytes / 1e6);
     return 0;
   };
 }

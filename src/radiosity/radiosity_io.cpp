@@ -84,6 +84,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
           {"options",
            {{"rays_per_link", raysPerLink},
             {"epsilon", options.epsilon},
+            {"form_factor_tolerance", options.formFactor.relativeTolerance},
             {"relative_epsilon", options.relativeEpsilon},
             {"min_area", options.minArea},
             {"tolerance", options.tolerance},

@@ -78,6 +78,34 @@ TEST_F(JsonCliTest, RadiosityPrintsItsStats) {
   for (const auto& [key, value] : written.items()) EXPECT_EQ(r[key], value) << key;
 }
 
+// --quality sets the solver's settings and stats.json says which, with the run's time and
+// memory; a bad level or a level with --epsilon is refused.
+TEST_F(JsonCliTest, RadiosityQualityAndRunFigures) {
+  const json draft = runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "d") +
+                             " --no-pictures --quality draft --json");
+  EXPECT_EQ(draft["options"]["quality"], "draft");
+  EXPECT_EQ(draft["options"]["epsilon"], 3e-3);
+  const json& run = draft["run"];
+  expectKeys(run, {"load_seconds", "visibility_seconds", "solve_seconds", "write_seconds",
+                   "picture_seconds", "total_seconds", "peak_resident_bytes"});
+  EXPECT_GT(run["peak_resident_bytes"].get<double>(), 1e6);
+  EXPECT_GE(run["total_seconds"].get<double>(), run["solve_seconds"].get<double>());
+  const json custom = runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "c") +
+                              " --no-pictures --epsilon 0.002 --json");
+  EXPECT_EQ(custom["options"]["quality"], "custom");
+  EXPECT_EQ(custom["options"]["epsilon"], 0.002);
+  // A finer level makes more links.
+  EXPECT_GT(custom["totals"]["links"].get<size_t>(), draft["totals"]["links"].get<size_t>());
+  EXPECT_NE(
+      test::runCli("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "x") + " --quality best")
+          .exitCode,
+      0);
+  EXPECT_NE(test::runCli("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "x") +
+                         " --quality low --epsilon 1e-3")
+                .exitCode,
+            0);
+}
+
 TEST(JsonCli, PvsStatsMatchTheWrittenRows) {
   const auto dir = test::scratchDir();
   const json j = runJson("pvs " + quoted(std::filesystem::path(kQuakeDir + "qbspfeatures.prt")) +

@@ -55,6 +55,45 @@ TEST(PhotonsCliTest, ReferenceMatchesHowellAndComparesARun) {
   EXPECT_LT(std::abs(j["comparison"]["regions"]["worst"]["relative"].get<double>()), 0.02);
 }
 
+// --reference compares a run against an earlier reference without shooting again: the same
+// figures as comparing in the run that shot the photons, leaks included (photon_power kept).
+TEST(PhotonsCliTest, AStoredReferenceComparesAsTheOriginal) {
+  const auto dir = test::scratchDir();
+  const auto scene = test::writeHowellPair(dir);
+  std::filesystem::create_directories(dir / "bright");
+  test::writeFile(
+      dir / "bright" / "radiosity.txt",
+      "# made up\n0 " + std::to_string(1.1 * 0.6 * 3 * test::kHowellC11) + " 0.1 0.1\n1 3 2 1\n");
+  const std::string compare = " --compare '" + (dir / "bright").string() + "' --json";
+  const test::CliResult shot =
+      test::runCliStdout("photons '" + scene.string() + "' -o '" + (dir / "ref").string() +
+                         "' --photons 100000" + compare);
+  const test::CliResult reused = test::runCliStdout(
+      "photons '" + scene.string() + "' --reference '" + (dir / "ref").string() + "'" + compare);
+  EXPECT_EQ(shot.exitCode, 1) << shot.output;
+  EXPECT_EQ(reused.exitCode, 1) << reused.output;
+  const nlohmann::json a = nlohmann::json::parse(shot.output, nullptr, false);
+  const nlohmann::json b = nlohmann::json::parse(reused.output, nullptr, false);
+  ASSERT_TRUE(a.is_object() && b.is_object()) << shot.output << reused.output;
+  // radiosity.txt keeps 9 significant digits: counts agree exactly, errors to ~1e-8.
+  const nlohmann::json &ca = a["comparison"], &cb = b["comparison"];
+  for (const char* key : {"channels", "leaks", "beyond_tolerance", "compared", "worst_patch"})
+    EXPECT_EQ(ca[key].dump(), cb[key].dump()) << key;
+  for (const char* key : {"l2_reflected", "max_relative", "rms_relative", "mean_signed"})
+    EXPECT_NEAR(ca[key].get<double>(), cb[key].get<double>(), 1e-8) << key;
+  EXPECT_EQ(b["reference"], (dir / "ref").string());
+
+  // Without --compare, or from a directory that is not a photons output, it says why.
+  const test::CliResult alone =
+      test::runCli("photons '" + scene.string() + "' --reference '" + (dir / "ref").string() + "'");
+  EXPECT_EQ(alone.exitCode, 2) << alone.output;
+  EXPECT_NE(alone.output.find("--compare"), std::string::npos) << alone.output;
+  const test::CliResult notPhotons = test::runCli("photons '" + scene.string() + "' --reference '" +
+                                                  (dir / "bright").string() + "'" + compare);
+  EXPECT_EQ(notPhotons.exitCode, 2) << notPhotons.output;
+  EXPECT_NE(notPhotons.output.find("standard_error.txt"), std::string::npos) << notPhotons.output;
+}
+
 TEST(PhotonsCliTest, LeakExitsOneAndIsNamed) {
   const auto dir = test::scratchDir();
   test::writeHowellPair(dir);
