@@ -12,9 +12,11 @@
 #include "quake/prt_portal_graph.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_checks.h"
+#include "radiosity/radiosity_quality.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
 #include "util/fnv_hash.h"
+#include "util/peak_memory.h"
 #include "util/progress_bar.h"
 #include "util/timing.h"
 #include "visibility/cell_pvs.h"
@@ -219,12 +221,17 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     const EmbreeScene bvh(scene);
     RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
     RadiosityOptions ro;
+    applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
     ro.refineProgress = watch(bar, budget);
+    const bool peakReset = resetPeakResident();
     t0 = Clock::now();
     const RadiosityResult result = solveRadiosity(scene, visibility, ro);
     row.radiositySeconds = secondsSince(t0);
+    if (peakReset) row.radiosityPeakBytes = peakResidentBytes();
     record(row, "radiosity", checkRadiosity(scene, result));
     row.radiosityLinks = result.stats.rounds.empty() ? 0 : result.stats.rounds.back().links.total();
+    row.radiosityInteractions = result.stats.interactions;
+    row.radiosityRays = result.stats.rays;
     row.radiosityHash = fmt::format("{:016x}", radiosityHash(result));
   } catch (const BudgetExceeded&) {
     row.notes.push_back(overBudget("radiosity", budget));

@@ -42,6 +42,9 @@ struct BenchRow {
   std::optional<uint64_t> pairsListed, pairsVisible, pairsPartial;
   std::optional<double> meanBlockers;
   std::optional<size_t> radiosityLinks;
+  std::optional<size_t> radiosityInteractions;
+  std::optional<uint64_t> radiosityRays;
+  std::optional<double> radiosityPeakBytes;  ///< peak resident memory of the radiosity stage
   std::optional<size_t> pvsLeafs;
   std::optional<double> pvsMeanLeafs;
   std::string visHash, radiosityHash, pvsHash;  ///< FNV-1a, 16 hex digits; empty if not run

@@ -105,6 +105,17 @@ std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
                        }});
     columns.push_back(
         {"links", "--:", [](const BenchRow& r) { return countCell(widen(r.radiosityLinks)); }});
+    columns.push_back({"interactions", "--:", [](const BenchRow& r) {
+                         return countCell(widen(r.radiosityInteractions));
+                       }});
+    columns.push_back(
+        {"rays", "--:", [](const BenchRow& r) { return countCell(r.radiosityRays); }});
+    columns.push_back({"radiosity peak MB", "--:", [](const BenchRow& r) {
+                         return cell(r.radiosityPeakBytes
+                                         ? std::optional<double>(*r.radiosityPeakBytes / 1e6)
+                                         : std::nullopt,
+                                     "{:.0f}");
+                       }});
     columns.push_back(
         {"radiosity hash", "---", [&](const BenchRow& r) { return hash(r.radiosityHash); }});
   }
@@ -160,6 +171,9 @@ nlohmann::json benchRowJson(const BenchRow& r) {
       {"pairs_partial", orNull(r.pairsPartial)},
       {"mean_blockers_per_partial", orNull(r.meanBlockers)},
       {"radiosity_links", orNull(r.radiosityLinks)},
+      {"radiosity_interactions", orNull(r.radiosityInteractions)},
+      {"radiosity_rays", orNull(r.radiosityRays)},
+      {"radiosity_peak_resident_bytes", orNull(r.radiosityPeakBytes)},
       {"pvs_leafs", orNull(r.pvsLeafs)},
       {"pvs_mean_leafs_visible", orNull(r.pvsMeanLeafs)},
       {"visibility_hash", r.visHash.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.visHash)},
