@@ -219,6 +219,7 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     const EmbreeScene bvh(scene);
     RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
     RadiosityOptions ro;
+    ro.threads = options.threads;
     ro.refineProgress = watch(bar, budget);
     t0 = Clock::now();
     const RadiosityResult result = solveRadiosity(scene, visibility, ro);
