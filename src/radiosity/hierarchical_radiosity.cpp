@@ -470,7 +470,10 @@ class Solver {
   bool pushInconsistentLinks(std::vector<LinkJob>& jobs, RefinementStats& round) {
     // The links at each subdivided, lit element, in link order (flat lists: linksAt[e] ..).
     const size_t n = tree_.size();
-    auto examined = [&](uint32_t e) { return !tree_[e].isLeaf() && maxChannel(radiosity_[e]) > 0; };
+    std::vector<char> isExamined(n);
+    parallelForEach(
+        n, [&](size_t e) { isExamined[e] = !tree_[e].isLeaf() && maxChannel(radiosity_[e]) > 0; });
+    auto examined = [&](uint32_t e) { return isExamined[e] != 0; };
     std::vector<uint32_t> linksAt(n + 1, 0);
     for (const Link& l : links_) {
       if (examined(l.a)) ++linksAt[l.a + 1];
@@ -508,15 +511,14 @@ class Solver {
           any = true;
         }
     if (!any) return false;
-    std::vector<Link> kept;
-    kept.reserve(links_.size());
+    size_t kept = 0;
     for (uint32_t i = 0; i < links_.size(); ++i) {
       if (splitBy[i] == kNoElement)
-        kept.push_back(links_[i]);
+        links_[kept++] = links_[i];
       else
         replaceBy(links_[i], splitBy[i], 0, jobs, round);
     }
-    links_ = std::move(kept);
+    links_.resize(kept);
     return true;
   }
 
