@@ -222,6 +222,7 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
     RadiosityOptions ro;
     applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
+    ro.threads = options.threads;
     ro.refineProgress = watch(bar, budget);
     const bool peakReset = resetPeakResident();
     t0 = Clock::now();

@@ -97,6 +97,9 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_option("--max-refinements", s->options.maxRefinements, "Refine/solve rounds at most")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--seed", s->options.seed, "Seed of the visibility samples");
+  cmd->add_option("--threads", s->options.threads,
+                  "Worker threads (0 = all cores); the solution is the same on any number")
+      ->check(CLI::Range(0, 1024));
   cmd->add_flag("-q,--quiet", s->quiet,
                 "No progress on stderr (there is none unless stderr is a terminal)");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
@@ -150,6 +153,7 @@ Action addRadiosityCommand(CLI::App& app) {
       ProgressBar cellBar("visibility (per source cell)", progress);
       ProgressBar visBar("visibility (per source patch)", progress);
       PropagationOptions propagation;
+      propagation.threads = s->options.threads;
       propagation.cellProgress = cellBar.callback();
       propagation.progress = visBar.callback();
       ProgressBar blockerBar("blocker lists (per source patch)", progress);

@@ -10,6 +10,7 @@
 #include "linespace/segment_blocking.h"
 #include "radiosity/link_sampling.h"
 #include "util/check.h"
+#include "util/parallel_for.h"
 
 namespace gv {
 namespace {
@@ -76,37 +77,33 @@ void BlockerVisibility::forEachCandidatePair(
   }
 }
 
-VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& b,
-                                               TubeId parentTube, uint64_t seed) {
+BlockerVisibility::Evaluation BlockerVisibility::evaluate(const Element& a, const Element& b,
+                                                          TubeId parentTube, uint64_t seed) const {
   CHECK_MSG(parentTube < tubes_.size(), "blockers mode: a link without a tube from this oracle");
-  LevelStats& level = stats_.level(a.depth + b.depth);
-  VisibilityEstimate e;
+  Evaluation out;
+  out.level = a.depth + b.depth;
+  VisibilityEstimate& e = out.estimate;
   if (parentTube == kVisibleTube) {
-    ++level.inheritedVisible;
-    ++level.visible;
+    out.inherited = true;
     e.tube = kVisibleTube;
-    return e;
+    return out;
   }
   const TubeRecord parent = tubes_[parentTube];
   const std::span<const uint32_t> list(blockers_.data() + parent.first, parent.count);
-  const TubeVerdict v = classifyTube(Tube(a.polygon, b.polygon), list, table_, tol_, options_);
-  ++level.tubes;
-  level.blockers += v.counts;
+  TubeVerdict v = classifyTube(Tube(a.polygon, b.polygon), list, table_, tol_, options_);
+  out.counts = v.counts;
   switch (v.status) {
     case VisibilityStatus::Invisible:
-      ++level.invisible;
-      proofs_.push_back({a.patch, b.patch, a.depth, b.depth, v.proof});
+      out.proof = {a.patch, b.patch, a.depth, b.depth, v.proof};
       e.status = VisibilityStatus::Invisible;
       e.fraction = 0;
-      return e;
+      return out;
     case VisibilityStatus::Visible:
-      ++level.visible;
       e.tube = kVisibleTube;
-      return e;
+      return out;
     case VisibilityStatus::Partial:
       break;
   }
-  ++level.partial;
   // The sampling of `rays` mode (link_sampling.h), tested against the kept blockers only.
   SplitMix64 rng(seed);
   std::optional<SampledVisibility> sampled = sampleLinkVisibility(
@@ -119,8 +116,51 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
   e.raysCast = sampled ? sampled->samples : 0;
   e.fraction = sampled ? sampled->fraction : 0.0;
   if (sampled) e.clearSamples = std::move(sampled->clearSamples);
-  e.tube = addTube(v.blockers);
+  out.blockers = std::move(v.blockers);
+  return out;
+}
+
+VisibilityEstimate BlockerVisibility::commit(Evaluation&& evaluation) {
+  LevelStats& level = stats_.level(evaluation.level);
+  VisibilityEstimate e = std::move(evaluation.estimate);
+  if (evaluation.inherited) {
+    ++level.inheritedVisible;
+    ++level.visible;
+    return e;
+  }
+  ++level.tubes;
+  level.blockers += evaluation.counts;
+  switch (e.status) {
+    case VisibilityStatus::Invisible:
+      ++level.invisible;
+      proofs_.push_back(evaluation.proof);
+      break;
+    case VisibilityStatus::Visible:
+      ++level.visible;
+      break;
+    case VisibilityStatus::Partial:
+      ++level.partial;
+      e.tube = addTube(evaluation.blockers);
+      break;
+  }
   return e;
+}
+
+VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& b,
+                                               TubeId parentTube, uint64_t seed) {
+  return commit(evaluate(a, b, parentTube, seed));
+}
+
+std::vector<VisibilityEstimate> BlockerVisibility::estimateAll(std::span<const LinkQuery> queries) {
+  std::vector<Evaluation> evaluations(queries.size());
+  parallelForEach(queries.size(), [&](size_t i) {
+    const LinkQuery& q = queries[i];
+    evaluations[i] = evaluate(*q.a, *q.b, q.parentTube, q.seed);
+  });
+  std::vector<VisibilityEstimate> out;
+  out.reserve(queries.size());
+  for (Evaluation& e : evaluations) out.push_back(commit(std::move(e)));
+  return out;
 }
 
 nlohmann::json BlockerVisibility::statsJson() const {

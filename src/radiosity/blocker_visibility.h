@@ -51,6 +51,8 @@ class BlockerVisibility final : public LinkVisibility {
   /// otherwise Partial with a new tube holding the blockers kept.
   VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                               uint64_t seed) override;
+  /// The classifications and rays in parallel; tubes, proofs and statistics kept in query order.
+  std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) override;
 
   /// Blocker outcomes and tube statuses per refinement level (a.depth + b.depth).
   const LinespaceStats& stats() const { return stats_; }
@@ -62,6 +64,19 @@ class BlockerVisibility final : public LinkVisibility {
   struct TubeRecord {
     uint32_t first = 0, count = 0;  ///< blockers_[first .. first + count)
   };
+  /// What estimate finds before it keeps anything: reads the stored tubes only, so any number of
+  /// evaluations may run at once between the commits.
+  struct Evaluation {
+    VisibilityEstimate estimate;
+    size_t level = 0;                ///< a.depth + b.depth
+    bool inherited = false;          ///< a VISIBLE parent: nothing classified
+    OutcomeCounts counts;            ///< the classification's outcomes
+    InvisibleProof proof;            ///< Invisible: kept in proofs()
+    std::vector<uint32_t> blockers;  ///< Partial: kept as the link's tube
+  };
+  Evaluation evaluate(const Element& a, const Element& b, TubeId parentTube, uint64_t seed) const;
+  /// Keeps an evaluation's tube, proof and statistics; returns its estimate.
+  VisibilityEstimate commit(Evaluation&& evaluation);
   TubeId addTube(const std::vector<uint32_t>& blockers);
 
   const Scene& scene_;

@@ -1,16 +1,23 @@
 // Hierarchical radiosity: initial links, BF refinement, Jacobi gather with push-pull. HSA91 §4,
-// paper §6 and §7.4 (Table 1 statistics per refinement round).
+// paper §6 and §7.4 (Table 1 statistics per refinement round). On oneTBB: the work runs in
+// parallel loops whose results land per index and are kept in a fixed order, so the solution is
+// the same, bit for bit, on any number of threads.
 #include "radiosity/hierarchical_radiosity.h"
 
 #include <fmt/core.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <utility>
 
 #include "radiosity/polygon_sampling.h"
+#include "util/check.h"
+#include "util/parallel_for.h"
 #include "util/timing.h"
 
 namespace gv {
@@ -49,6 +56,21 @@ struct Tap {
   float intoA = 0;        ///< tap.a gathers intoA · B(tap.b): F_ab · share · A_a / A_tap.a
   float intoB = 0;        ///< tap.b gathers intoB · B(tap.a)
 };
+
+/// A link to make between elements a and b, refining a link whose oracle state was `tube`;
+/// `root`: which of the round's links it descends from (the progress count).
+struct LinkJob {
+  uint32_t a = 0, b = 0;
+  TubeId tube = kNoTube;
+  uint32_t root = 0;
+};
+
+/// Links decided (and jobs made) per step: each step evaluates its new links in parallel, then
+/// keeps them in a fixed order. A constant, not a function of the thread count, so that which
+/// links share a step, and so element ids, seeds and the whole solution, are the same on any
+/// number of threads. Large enough to keep the cores busy (a step's jobs take tens of ms), small
+/// enough that a step's clear samples take a few MB.
+constexpr size_t kBatch = 8192;
 
 class Solver {
  public:
@@ -125,57 +147,118 @@ class Solver {
   }
 
  private:
+  /// The candidate pairs, a batch at a time (rays mode proposes every pair of patches).
   void makeInitialLinks() {
-    const double eps = tol_.length();
+    std::vector<LinkJob> jobs;
+    auto flush = [&] {
+      stats_.facingPairs += makeLinks(jobs, links_, nullptr);
+      jobs.clear();
+    };
     visibility_.forEachCandidatePair([&](uint32_t a, uint32_t b, TubeId tube) {
       ++stats_.candidatePairs;
-      if (!canFace(tree_[a].polygon, tree_[b].polygon, eps)) return;
-      ++stats_.facingPairs;
-      if (std::optional<Link> link = makeLink(a, b, tube)) links_.push_back(*link);
+      jobs.push_back({a, b, tube, 0});
+      if (jobs.size() == kBatch) flush();
     });
+    flush();
   }
 
-  /// Form factor (exact, unoccluded) times the oracle's visibility; nullopt when no light passes.
-  std::optional<Link> makeLink(uint32_t a, uint32_t b, TubeId parentTube) {
+  /// The unoccluded form factors of a link to make (HSA91), before its visibility.
+  struct FormFactors {
+    bool faces = false;  ///< false: the two cannot exchange light, no link
+    double ab = 0;       ///< F(a → b)
+    double variationA = 0, variationB = 0;
+  };
+  FormFactors formFactors(uint32_t a, uint32_t b) const {
     const Element& ea = tree_[a];
     const Element& eb = tree_[b];
-    if (!canFace(ea.polygon, eb.polygon, tol_.length())) return std::nullopt;
-    ++current_->interactions;
+    FormFactors f;
+    if (!canFace(ea.polygon, eb.polygon, tol_.length())) return f;
+    f.faces = true;
     // Integrate over the smaller element: the quadrature's accuracy depends on the integration
     // domain's size relative to the distance; reciprocity gives the other direction.
-    double fab, variationA, variationB;
     if (eb.area < ea.area) {
       const FormFactorEstimate e =
           formFactorEstimate(eb.polygon, ea.polygon, tol_, options_.formFactor);
-      fab = e.ab * eb.area / ea.area;
-      variationA = e.variationB;
-      variationB = e.variationA;
+      f.ab = e.ab * eb.area / ea.area;
+      f.variationA = e.variationB;
+      f.variationB = e.variationA;
     } else {
       const FormFactorEstimate e =
           formFactorEstimate(ea.polygon, eb.polygon, tol_, options_.formFactor);
-      fab = e.ab;
-      variationA = e.variationA;
-      variationB = e.variationB;
+      f.ab = e.ab;
+      f.variationA = e.variationA;
+      f.variationB = e.variationB;
     }
-    if (!(fab > 0)) return std::nullopt;
-    const VisibilityEstimate v =
-        visibility_.estimate(ea, eb, parentTube, mixSeed(options_.seed, a, b));
-    current_->rays += v.raysCast;
-    switch (v.status) {
-      case VisibilityStatus::Invisible:
-        ++current_->created.invisible;
-        // Proven (no rays needed): no light passes. Sampled: light narrower than the samples
-        // may pass; the link is kept, carrying nothing, so that refinement can look again
-        // (dropping it would bias the solution dark, by p (1 - p)^N per link).
-        if (v.raysCast == 0) return std::nullopt;
-        break;
-      case VisibilityStatus::Partial:
-        ++current_->created.partial;
-        break;
-      case VisibilityStatus::Visible:
-        ++current_->created.visible;
-        break;
+    return f;
+  }
+
+  /// Makes the links of `jobs` that carry light: form factor (exact, unoccluded) times the
+  /// oracle's visibility. The work runs in parallel, per job; the links, their taps and the
+  /// round's counts are appended in job order (`out`, and each link's job root to `roots` if
+  /// given), so nothing depends on the schedule. Returns how many jobs could face (interactions).
+  size_t makeLinks(std::span<const LinkJob> jobs, std::vector<Link>& out,
+                   std::vector<uint32_t>* roots) {
+    std::vector<FormFactors> factors(jobs.size());
+    parallelForEach(jobs.size(), [&](size_t i) { factors[i] = formFactors(jobs[i].a, jobs[i].b); });
+    std::vector<uint32_t> asked;
+    std::vector<LinkQuery> queries;
+    size_t facing = 0;
+    for (size_t i = 0; i < jobs.size(); ++i) {
+      if (!factors[i].faces) continue;
+      ++facing;
+      if (!(factors[i].ab > 0)) continue;
+      const LinkJob& j = jobs[i];
+      asked.push_back(static_cast<uint32_t>(i));
+      queries.push_back({&tree_[j.a], &tree_[j.b], j.tube, mixSeed(options_.seed, j.a, j.b)});
     }
+    current_->interactions += facing;
+    std::vector<VisibilityEstimate> estimates = visibility_.estimateAll(queries);
+    CHECK(estimates.size() == queries.size());
+    std::vector<std::optional<Link>> made(asked.size());
+    std::vector<std::vector<Tap>> taps(asked.size());
+    parallelForEach(asked.size(), [&](size_t k) {
+      const LinkJob& j = jobs[asked[k]];
+      made[k] = finishLink(j.a, j.b, factors[asked[k]], estimates[k], taps[k]);
+    });
+    for (size_t k = 0; k < asked.size(); ++k) {
+      const VisibilityEstimate& v = estimates[k];
+      current_->rays += v.raysCast;
+      switch (v.status) {
+        case VisibilityStatus::Invisible:
+          ++current_->created.invisible;
+          break;
+        case VisibilityStatus::Partial:
+          ++current_->created.partial;
+          break;
+        case VisibilityStatus::Visible:
+          ++current_->created.visible;
+          break;
+      }
+      if (!made[k]) continue;
+      Link& link = *made[k];
+      if (!taps[k].empty()) {
+        link.tapBegin = static_cast<uint32_t>(taps_.size());
+        link.tapCount = static_cast<uint32_t>(taps[k].size());
+        taps_.insert(taps_.end(), taps[k].begin(), taps[k].end());
+      }
+      out.push_back(link);
+      if (roots) roots->push_back(jobs[asked[k]].root);
+    }
+    return facing;
+  }
+
+  /// The link between a and b from its form factors and visibility; nullopt when no light
+  /// passes. A Partial link's taps go to `taps` (Link::tapBegin is set when they are stored).
+  /// Reads the tree only: the links of a batch are finished in parallel.
+  std::optional<Link> finishLink(uint32_t a, uint32_t b, const FormFactors& f,
+                                 const VisibilityEstimate& v, std::vector<Tap>& taps) const {
+    const Element& ea = tree_[a];
+    const Element& eb = tree_[b];
+    const double fab = f.ab;
+    // Invisible, proven (no rays needed): no light passes. Sampled: light narrower than the
+    // samples may pass; the link is kept, carrying nothing, so that refinement can look again
+    // (dropping it would bias the solution dark, by p (1 - p)^N per link).
+    if (v.status == VisibilityStatus::Invisible && v.raysCast == 0) return std::nullopt;
     Link link;
     // What fraction of each element lies in front of the other's plane (exchanges light).
     if (const std::optional<ExchangingParts> parts =
@@ -186,8 +269,8 @@ class Solver {
     link.a = a;
     link.b = b;
     link.unoccludedAB = fab;
-    link.variationA = variationA;
-    link.variationB = variationB;
+    link.variationA = f.variationA;
+    link.variationB = f.variationB;
     link.visibility = static_cast<float>(v.fraction);
     link.formFactorAB = fab * v.fraction;
     link.formFactorBA = fab * ea.area / eb.area * v.fraction;
@@ -195,14 +278,13 @@ class Solver {
     link.tube = v.tube;
     link.samples = static_cast<uint32_t>(std::min<uint64_t>(v.raysCast, UINT32_MAX));
     if (v.status == VisibilityStatus::Partial && !v.clearSamples.empty()) {
-      link.tapBegin = static_cast<uint32_t>(taps_.size());
-      link.tapCount = static_cast<uint32_t>(v.clearSamples.size());
       const double fba = fab * ea.area / eb.area;
+      taps.reserve(v.clearSamples.size());
       for (const ClearSample& c : v.clearSamples) {
         const uint32_t ta = tree_.deepestContaining(a, c.from);
         const uint32_t tb = tree_.deepestContaining(b, c.to);
-        taps_.push_back({ta, tb, static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
-                         static_cast<float>(fba * c.weight * eb.area / tree_[tb].area)});
+        taps.push_back({ta, tb, static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
+                        static_cast<float>(fba * c.weight * eb.area / tree_[tb].area)});
       }
     }
     return link;
@@ -276,65 +358,103 @@ class Solver {
 
   bool canSplit(uint32_t e) const { return tree_[e].area >= minArea_; }
 
-  /// HSA91's Refine, iterated with an explicit stack: a link whose error exceeds the threshold is
-  /// replaced by links from the children of one of its elements to the other; those are examined
-  /// in turn (with the parent's radiosity, which children inherit). Which element: for a Visible
-  /// link the receiver of the worse direction, since only cutting the receiver narrows the spread
-  /// of the form factor across it; for a Partial link the larger one (HSA91's rule), which
-  /// narrows the visibility sample most.
+  /// HSA91's Refine, breadth first: a link whose error exceeds the threshold is replaced by links
+  /// from the children of one of its elements to the other; those are examined in turn (with the
+  /// parent's radiosity, which children inherit). Which element: for a Visible link the receiver
+  /// of the worse direction, since only cutting the receiver narrows the spread of the form
+  /// factor across it; for a Partial link the larger one (HSA91's rule), which narrows the
+  /// visibility sample most. Links are taken from a queue kBatch at a time: their verdicts in
+  /// parallel (they read the radiosities, which new children inherit unchanged, so a verdict does
+  /// not depend on what was split before it), the splits in queue order (element ids), the
+  /// children's links in parallel and queued in order (makeLinks).
   void refineLinks(RefinementStats& round) {
     std::vector<Link> pending = std::move(links_);
     links_.clear();
     refinePending(pending, round, true);
-    while (pushInconsistentLinks(pending, round)) refinePending(pending, round, false);
-  }
-
-  /// Splits `l` by its element `split` (which has children) and queues the children's links.
-  void replaceBy(const Link& l, uint32_t split, std::vector<Link>& pending,
-                 RefinementStats& round) {
-    ++round.linksRefined;
-    const Element& parent = tree_[split];
-    const uint32_t first = parent.firstChild, count = parent.childCount;
-    for (uint32_t c = first; c < first + count; ++c) {
-      std::optional<Link> child =
-          split == l.a ? makeLink(c, l.b, l.tube) : makeLink(l.a, c, l.tube);
-      if (child) pending.push_back(*child);
+    std::vector<LinkJob> jobs;
+    while (pushInconsistentLinks(jobs, round)) {
+      pending.clear();
+      for (size_t i = 0; i < jobs.size(); i += kBatch)
+        makeLinks(std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), pending, nullptr);
+      jobs.clear();
+      refinePending(pending, round, false);
     }
   }
 
-  /// `report`: progress goes to refineProgress (the round's main pass; the consistency passes
-  /// after it are not reported).
-  void refinePending(std::vector<Link>& pending, RefinementStats& round, bool report) {
-    // Children go on top of the stack, so the round's own links are its bottom `originals`.
-    const size_t total = pending.size();
-    size_t originals = total;
-    while (!pending.empty()) {
-      if (pending.size() == originals) {
-        --originals;
-        const size_t done = total - originals;
-        if (report && options_.refineProgress && (done % 256 == 0 || done == total))
-          options_.refineProgress(done, total);
+  /// Queues the links from the children of `split` (an end of `l`, with children) to l's other
+  /// end.
+  void replaceBy(const Link& l, uint32_t split, uint32_t root, std::vector<LinkJob>& jobs,
+                 RefinementStats& round) const {
+    ++round.linksRefined;
+    const Element& parent = tree_[split];
+    const uint32_t first = parent.firstChild, count = parent.childCount;
+    for (uint32_t c = first; c < first + count; ++c)
+      jobs.push_back(split == l.a ? LinkJob{c, l.b, l.tube, root} : LinkJob{l.a, c, l.tube, root});
+  }
+
+  /// Which end of `l` to subdivide, or kNoElement when the link is accurate enough (or neither
+  /// end may be cut). Reads only.
+  uint32_t splitOf(const Link& l) const {
+    const LinkError error = linkError(l);
+    if (error.worst() <= threshold_) return kNoElement;
+    bool preferA = l.status == VisibilityStatus::Visible ? error.intoA >= error.intoB
+                                                         : tree_[l.a].area >= tree_[l.b].area;
+    // A source term dominating: cut that source (b for clipA / sourceA, a for B's).
+    const double sourceOfA = error.clipA + error.sourceA, sourceOfB = error.clipB + error.sourceB;
+    if (std::max(sourceOfA, sourceOfB) > std::max(error.intoA, error.intoB))
+      preferA = sourceOfB >= sourceOfA;
+    uint32_t split = preferA ? l.a : l.b;
+    if (!canSplit(split)) split = preferA ? l.b : l.a;
+    return canSplit(split) ? split : kNoElement;
+  }
+
+  /// Refines the links of `queue` (and their children, appended to it) until each is accurate
+  /// enough or cannot be cut; they end in links_. `report`: progress goes to refineProgress (the
+  /// round's main pass; the consistency passes after it are not reported), counting the queue's
+  /// first links whose descendants are all settled.
+  void refinePending(std::vector<Link>& queue, RefinementStats& round, bool report) {
+    const size_t total = queue.size();
+    std::vector<uint32_t> roots(total);
+    for (size_t i = 0; i < total; ++i) roots[i] = static_cast<uint32_t>(i);
+    std::vector<uint32_t> outstanding(total, 1);  // per root: its links not yet settled
+    size_t done = 0, reported = 0;
+    std::vector<uint32_t> splits;
+    std::vector<LinkJob> jobs;
+    std::vector<Link> children;
+    std::vector<uint32_t> childRoots;
+    size_t head = 0;
+    while (head < queue.size()) {
+      const size_t n = std::min(kBatch, queue.size() - head);
+      splits.resize(n);
+      parallelForEach(n, [&](size_t i) { splits[i] = splitOf(queue[head + i]); });
+      jobs.clear();
+      for (size_t i = 0; i < n; ++i) {
+        const Link& l = queue[head + i];
+        if (splits[i] == kNoElement || !subdivide(splits[i])) {
+          links_.push_back(l);
+          continue;
+        }
+        replaceBy(l, splits[i], roots[head + i], jobs, round);
       }
-      const Link l = pending.back();
-      pending.pop_back();
-      const LinkError error = linkError(l);
-      if (error.worst() <= threshold_) {
-        links_.push_back(l);
-        continue;
+      children.clear();
+      childRoots.clear();
+      makeLinks(jobs, children, &childRoots);
+      for (const uint32_t r : childRoots) ++outstanding[r];
+      for (size_t i = 0; i < n; ++i)
+        if (--outstanding[roots[head + i]] == 0) ++done;
+      queue.insert(queue.end(), children.begin(), children.end());
+      roots.insert(roots.end(), childRoots.begin(), childRoots.end());
+      head += n;
+      // Drop the settled front now and then: the queue holds a breadth-first level at a time.
+      if (head >= kBatch * 16 && head * 2 >= queue.size()) {
+        queue.erase(queue.begin(), queue.begin() + static_cast<long>(head));
+        roots.erase(roots.begin(), roots.begin() + static_cast<long>(head));
+        head = 0;
       }
-      bool preferA = l.status == VisibilityStatus::Visible ? error.intoA >= error.intoB
-                                                           : tree_[l.a].area >= tree_[l.b].area;
-      // A source term dominating: cut that source (b for clipA / sourceA, a for B's).
-      const double sourceOfA = error.clipA + error.sourceA, sourceOfB = error.clipB + error.sourceB;
-      if (std::max(sourceOfA, sourceOfB) > std::max(error.intoA, error.intoB))
-        preferA = sourceOfB >= sourceOfA;
-      uint32_t split = preferA ? l.a : l.b;
-      if (!canSplit(split)) split = preferA ? l.b : l.a;
-      if (!canSplit(split) || !subdivide(split)) {
-        links_.push_back(l);
-        continue;
+      if (report && options_.refineProgress && done > reported) {
+        reported = done;
+        options_.refineProgress(done, total);
       }
-      replaceBy(l, split, pending, round);
     }
   }
 
@@ -345,93 +465,152 @@ class Solver {
   /// radiosity, must stay within relativeEpsilon; otherwise the links adding most to the worst
   /// child's error are refined into the existing children until it fits. Errors of opposite
   /// sign cancel (a child nearer one source is farther from another), so only coherent ones (a
-  /// corner child under coarse links to far walls) cost links. Moves the links to `pending`;
-  /// returns whether any moved.
-  bool pushInconsistentLinks(std::vector<Link>& pending, RefinementStats& round) {
-    std::vector<std::vector<uint32_t>> ends(tree_.size());
-    for (uint32_t i = 0; i < links_.size(); ++i) {
-      const Link& l = links_[i];
-      if (!tree_[l.a].isLeaf()) ends[l.a].push_back(i);
-      if (!tree_[l.b].isLeaf()) ends[l.b].push_back(i);
+  /// corner child under coarse links to far walls) cost links. Replaces those links by the jobs
+  /// of their children's links (`jobs`); returns whether any was replaced.
+  bool pushInconsistentLinks(std::vector<LinkJob>& jobs, RefinementStats& round) {
+    // The links at each subdivided, lit element, in link order (flat lists: linksAt[e] ..).
+    const size_t n = tree_.size();
+    std::vector<char> isExamined(n);
+    parallelForEach(
+        n, [&](size_t e) { isExamined[e] = !tree_[e].isLeaf() && maxChannel(radiosity_[e]) > 0; });
+    auto examined = [&](uint32_t e) { return isExamined[e] != 0; };
+    std::vector<uint32_t> linksAt(n + 1, 0);
+    for (const Link& l : links_) {
+      if (examined(l.a)) ++linksAt[l.a + 1];
+      if (examined(l.b)) ++linksAt[l.b + 1];
     }
+    for (size_t e = 0; e < n; ++e) linksAt[e + 1] += linksAt[e];
+    std::vector<uint32_t> ends(linksAt[n]);
+    {
+      std::vector<uint32_t> at(linksAt.begin(), linksAt.end() - 1);
+      for (uint32_t i = 0; i < links_.size(); ++i) {
+        const Link& l = links_[i];
+        if (examined(l.a)) ends[at[l.a]++] = i;
+        if (examined(l.b)) ends[at[l.b]++] = i;
+      }
+    }
+    computeChildDeviations(examined);
+    // Per element, the links to refine, in parallel (each reads only); a link wanted at both
+    // ends is split at the lower element id.
+    std::vector<uint32_t> elements;
+    for (uint32_t e = 0; e < n; ++e)
+      if (linksAt[e + 1] > linksAt[e]) elements.push_back(e);
+    std::vector<std::vector<uint32_t>> wanted(elements.size());
+    tbb::enumerable_thread_specific<ConsistencyScratch> scratch;
+    parallelForEach(elements.size(), [&](size_t x) {
+      const uint32_t e = elements[x];
+      wanted[x] = inconsistentLinksAt(
+          e, std::span(ends).subspan(linksAt[e], linksAt[e + 1] - linksAt[e]), scratch.local());
+    });
     std::vector<uint32_t> splitBy(links_.size(), kNoElement);
     bool any = false;
-    std::vector<double> contribution, deviation;
-    std::vector<uint32_t> order;
-    for (uint32_t e = 0; e < ends.size(); ++e) {
-      const std::vector<uint32_t>& list = ends[e];
-      const double be = maxChannel(radiosity_[e]);
-      if (list.empty() || !(be > 0)) continue;
-      const Element& el = tree_[e];
-      const uint32_t first = el.firstChild, k = el.childCount;
-      const double budget = options_.relativeEpsilon;
-      contribution.assign(list.size() * k, 0.0);
-      deviation.assign(k, 0.0);
-      for (size_t j = 0; j < list.size(); ++j) {
-        Link& l = links_[list[j]];
-        const bool atA = l.a == e;
-        const uint32_t other = atA ? l.b : l.a;
-        const double weight =
-            maxChannel(reflectance_[el.patch] * radiosity_[other]) * l.visibility / be;
-        const double* offMean = childDeviations(l, e);
-        for (uint32_t c = 0; c < k; ++c)
-          deviation[c] += contribution[j * k + c] = weight * offMean[c];
-      }
-      for (uint32_t pass = 0; pass <= k; ++pass) {
-        uint32_t worst = 0;
-        for (uint32_t c = 1; c < k; ++c)
-          if (std::abs(deviation[c]) > std::abs(deviation[worst])) worst = c;
-        if (std::abs(deviation[worst]) <= budget) break;
-        const double sign = deviation[worst] > 0 ? 1.0 : -1.0;
-        order.clear();
-        for (uint32_t j = 0; j < list.size(); ++j)
-          if (splitBy[list[j]] != e && sign * contribution[j * k + worst] > 0) order.push_back(j);
-        std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
-          const double cx = sign * contribution[x * k + worst],
-                       cy = sign * contribution[y * k + worst];
-          return cx != cy ? cx > cy : x < y;
-        });
-        for (uint32_t j : order) {
-          if (std::abs(deviation[worst]) <= budget) break;
-          for (uint32_t c = 0; c < k; ++c) deviation[c] -= contribution[j * k + c];
-          if (splitBy[list[j]] == kNoElement) {
-            splitBy[list[j]] = e;
-            any = true;
-          }
+    for (size_t x = 0; x < elements.size(); ++x)
+      for (const uint32_t i : wanted[x])
+        if (splitBy[i] == kNoElement) {
+          splitBy[i] = elements[x];
+          any = true;
         }
-      }
-    }
     if (!any) return false;
-    std::vector<Link> kept;
-    kept.reserve(links_.size());
+    size_t kept = 0;
     for (uint32_t i = 0; i < links_.size(); ++i) {
       if (splitBy[i] == kNoElement)
-        kept.push_back(links_[i]);
+        links_[kept++] = links_[i];
       else
-        replaceBy(links_[i], splitBy[i], pending, round);
+        replaceBy(links_[i], splitBy[i], 0, jobs, round);
     }
-    links_ = std::move(kept);
+    links_.resize(kept);
     return true;
   }
 
-  /// Per child c of `e` (an end of `l`, with children): the link's mean form factor into e minus
-  /// the point form factor at c's centroid. Geometry only, so computed once per link end and
-  /// kept (Link::deviationsAtA/B): the consistency passes revisit the same links every pass and
-  /// every round.
-  const double* childDeviations(Link& l, uint32_t e) {
-    const bool atA = l.a == e;
-    uint32_t& at = atA ? l.deviationsAtA : l.deviationsAtB;
-    if (at == UINT32_MAX) {
-      at = static_cast<uint32_t>(deviationPool_.size());
+  struct ConsistencyScratch {
+    std::vector<double> contribution, deviation;
+    std::vector<uint32_t> order;
+    std::vector<char> taken;
+  };
+
+  /// The links (ids into links_) that must be refined into e's children for e's children to get
+  /// within relativeEpsilon, most contributing first; `list`: the links at e. Reads only.
+  std::vector<uint32_t> inconsistentLinksAt(uint32_t e, std::span<const uint32_t> list,
+                                            ConsistencyScratch& s) const {
+    std::vector<uint32_t> out;
+    const Element& el = tree_[e];
+    const double be = maxChannel(radiosity_[e]);
+    const uint32_t k = el.childCount;
+    const double budget = options_.relativeEpsilon;
+    std::vector<double>& contribution = s.contribution;
+    std::vector<double>& deviation = s.deviation;
+    contribution.assign(list.size() * k, 0.0);
+    deviation.assign(k, 0.0);
+    s.taken.assign(list.size(), 0);
+    for (size_t j = 0; j < list.size(); ++j) {
+      const Link& l = links_[list[j]];
+      const bool atA = l.a == e;
       const uint32_t other = atA ? l.b : l.a;
+      const double weight =
+          maxChannel(reflectance_[el.patch] * radiosity_[other]) * l.visibility / be;
+      const double* offMean = deviationPool_.data() + (atA ? l.deviationsAtA : l.deviationsAtB);
+      for (uint32_t c = 0; c < k; ++c)
+        deviation[c] += contribution[j * k + c] = weight * offMean[c];
+    }
+    for (uint32_t pass = 0; pass <= k; ++pass) {
+      uint32_t worst = 0;
+      for (uint32_t c = 1; c < k; ++c)
+        if (std::abs(deviation[c]) > std::abs(deviation[worst])) worst = c;
+      if (std::abs(deviation[worst]) <= budget) break;
+      const double sign = deviation[worst] > 0 ? 1.0 : -1.0;
+      std::vector<uint32_t>& order = s.order;
+      order.clear();
+      for (uint32_t j = 0; j < list.size(); ++j)
+        if (!s.taken[j] && sign * contribution[j * k + worst] > 0) order.push_back(j);
+      std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) {
+        const double cx = sign * contribution[x * k + worst],
+                     cy = sign * contribution[y * k + worst];
+        return cx != cy ? cx > cy : x < y;
+      });
+      for (uint32_t j : order) {
+        if (std::abs(deviation[worst]) <= budget) break;
+        for (uint32_t c = 0; c < k; ++c) deviation[c] -= contribution[j * k + c];
+        s.taken[j] = 1;
+        out.push_back(list[j]);
+      }
+    }
+    return out;
+  }
+
+  /// Per child c of an end e of a link (e `examined`: with children): the link's mean form
+  /// factor into e minus the point form factor at c's centroid. Geometry only, so computed once
+  /// per link end and kept in deviationPool_ (Link::deviationsAtA/B): the consistency passes
+  /// revisit the same links every pass and every round. The new ones are placed in link order,
+  /// then computed in parallel.
+  template <typename Examined>
+  void computeChildDeviations(const Examined& examined) {
+    struct Missing {
+      uint32_t link;
+      bool atA;
+    };
+    std::vector<Missing> missing;
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      Link& l = links_[i];
+      for (const bool atA : {true, false}) {
+        const uint32_t e = atA ? l.a : l.b;
+        uint32_t& at = atA ? l.deviationsAtA : l.deviationsAtB;
+        if (at != UINT32_MAX || !examined(e)) continue;
+        at = static_cast<uint32_t>(deviationPool_.size());
+        deviationPool_.resize(deviationPool_.size() + tree_[e].childCount);
+        missing.push_back({i, atA});
+      }
+    }
+    parallelForEach(missing.size(), [&](size_t m) {
+      const Link& l = links_[missing[m].link];
+      const bool atA = missing[m].atA;
+      const uint32_t e = atA ? l.a : l.b, other = atA ? l.b : l.a;
       const Element& el = tree_[e];
       const double mean = atA ? l.unoccludedAB : l.unoccludedAB * tree_[l.a].area / tree_[l.b].area;
-      for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c)
-        deviationPool_.push_back(mean - pointFormFactorToFront(tree_[c].polygon.centroid(),
-                                                               el.polygon.plane,
-                                                               tree_[other].polygon, tol_));
-    }
-    return deviationPool_.data() + at;
+      double* out = deviationPool_.data() + (atA ? l.deviationsAtA : l.deviationsAtB);
+      for (uint32_t c = 0; c < el.childCount; ++c)
+        out[c] = mean - pointFormFactorToFront(tree_[el.firstChild + c].polygon.centroid(),
+                                               el.polygon.plane, tree_[other].polygon, tol_);
+    });
   }
 
   /// Drops the taps of links that refinement replaced (they are only appended).
@@ -460,32 +639,92 @@ class Solver {
     return true;
   }
 
-  /// Jacobi iteration of gather + push-pull until the largest change is below tolerance.
+  /// Who gathers what, per receiving element e: the terms linkBegin[e] .. linkBegin[e + 1] of
+  /// `linkTerms` (from the links without taps) and tapBegin[e] .. tapBegin[e + 1] of `tapTerms`,
+  /// each a source and the coefficient e gathers its radiosity with, in link order. Built once per
+  /// solve, so that a sweep is a loop over receivers, in parallel, each adding its terms in a
+  /// fixed order (a loop over links would add into shared sums).
+  struct GatherLists {
+    std::vector<uint32_t> linkBegin, tapBegin;
+    std::vector<std::pair<uint32_t, double>> linkTerms;
+    std::vector<std::pair<uint32_t, float>> tapTerms;
+  };
+  GatherLists gatherLists() const {
+    GatherLists g;
+    const size_t n = tree_.size();
+    g.linkBegin.assign(n + 1, 0);
+    g.tapBegin.assign(n + 1, 0);
+    for (const Link& l : links_) {
+      if (l.tapCount == 0) {
+        ++g.linkBegin[l.a + 1];
+        ++g.linkBegin[l.b + 1];
+        continue;
+      }
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        ++g.tapBegin[taps_[t].a + 1];
+        ++g.tapBegin[taps_[t].b + 1];
+      }
+    }
+    for (size_t e = 0; e < n; ++e) {
+      g.linkBegin[e + 1] += g.linkBegin[e];
+      g.tapBegin[e + 1] += g.tapBegin[e];
+    }
+    g.linkTerms.resize(g.linkBegin[n]);
+    g.tapTerms.resize(g.tapBegin[n]);
+    std::vector<uint32_t> linkAt(g.linkBegin.begin(), g.linkBegin.end() - 1);
+    std::vector<uint32_t> tapAt(g.tapBegin.begin(), g.tapBegin.end() - 1);
+    for (const Link& l : links_) {
+      if (l.tapCount == 0) {
+        g.linkTerms[linkAt[l.a]++] = {l.b, l.formFactorAB};
+        g.linkTerms[linkAt[l.b]++] = {l.a, l.formFactorBA};
+        continue;
+      }
+      // Partial: each clear sample carries its share from the part of one element it ends on to
+      // the part of the other (see Tap).
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        const Tap& tap = taps_[t];
+        g.tapTerms[tapAt[tap.a]++] = {tap.b, tap.intoA};
+        g.tapTerms[tapAt[tap.b]++] = {tap.a, tap.intoB};
+      }
+    }
+    return g;
+  }
+
+  /// The largest change and the largest radiosity of a sweep (any channel).
+  struct SweepChange {
+    double change = 0, radiosity = 0;
+  };
+
+  /// Jacobi iteration of gather + push-pull until the largest change is below tolerance. Both
+  /// halves run in parallel (gather per receiving element, push-pull per patch) and add in a
+  /// fixed order; the maxima are exact, so the solution does not depend on the thread count.
   bool solve(RefinementStats& round) {
     const auto t0 = Clock::now();
+    const GatherLists lists = gatherLists();
+    const size_t patches = tree_.patchCount();
+    std::vector<SweepChange> changes(patches);
     bool converged = false;
     int sweep = 0;
     while (sweep < options_.maxSweeps) {
       ++sweep;
-      std::fill(gathered_.begin(), gathered_.end(), Rgb{});
-      for (const Link& l : links_) {
-        if (l.tapCount == 0) {
-          gathered_[l.a] += l.formFactorAB * radiosity_[l.b];
-          gathered_[l.b] += l.formFactorBA * radiosity_[l.a];
-          continue;
-        }
-        // Partial: each clear sample carries its share from the part of one element it ends
-        // on to the part of the other (see Tap).
-        for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
-          const Tap& tap = taps_[t];
-          gathered_[tap.a] += static_cast<double>(tap.intoA) * radiosity_[tap.b];
-          gathered_[tap.b] += static_cast<double>(tap.intoB) * radiosity_[tap.a];
-        }
+      parallelForEach(tree_.size(), [&](size_t e) {
+        Rgb g{};
+        for (uint32_t t = lists.linkBegin[e]; t < lists.linkBegin[e + 1]; ++t)
+          g += lists.linkTerms[t].second * radiosity_[lists.linkTerms[t].first];
+        for (uint32_t t = lists.tapBegin[e]; t < lists.tapBegin[e + 1]; ++t)
+          g += static_cast<double>(lists.tapTerms[t].second) * radiosity_[lists.tapTerms[t].first];
+        gathered_[e] = g;
+      });
+      parallelForEach(patches, [&](size_t p) {
+        changes[p] = {};
+        pushPull(static_cast<uint32_t>(p), Rgb{}, changes[p]);
+      });
+      SweepChange largest;
+      for (const SweepChange& c : changes) {
+        largest.change = std::max(largest.change, c.change);
+        largest.radiosity = std::max(largest.radiosity, c.radiosity);
       }
-      maxChange_ = 0;
-      maxRadiosity_ = 0;
-      for (uint32_t p = 0; p < tree_.patchCount(); ++p) pushPull(p, Rgb{});
-      if (maxChange_ <= options_.tolerance * maxRadiosity_) {
+      if (largest.change <= options_.tolerance * largest.radiosity) {
         converged = true;
         break;
       }
@@ -496,8 +735,9 @@ class Solver {
   }
 
   /// Push the irradiance gathered at ancestors (`down`) to the leaves, where B = E + ρ · total;
-  /// pull the area-weighted mean back up. Returns the element's new radiosity.
-  Rgb pushPull(uint32_t e, const Rgb& down) {
+  /// pull the area-weighted mean back up. Returns the element's new radiosity; adds its change to
+  /// `sweep`. Writes only e's subtree: patches run in parallel.
+  Rgb pushPull(uint32_t e, const Rgb& down, SweepChange& sweep) {
     const Element& el = tree_[e];
     const Rgb total = down + gathered_[e];
     Rgb b;
@@ -508,7 +748,7 @@ class Solver {
     } else {
       double area = 0;
       for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {
-        b += tree_[c].area * pushPull(c, total);
+        b += tree_[c].area * pushPull(c, total, sweep);
         area += tree_[c].area;
         brightest = std::max(brightest, brightest_[c]);
       }
@@ -516,9 +756,9 @@ class Solver {
     }
     brightest_[e] = brightest;
     const Rgb old = radiosity_[e];
-    maxChange_ =
-        std::max({maxChange_, std::abs(b.r - old.r), std::abs(b.g - old.g), std::abs(b.b - old.b)});
-    maxRadiosity_ = std::max(maxRadiosity_, maxChannel(b));
+    sweep.change = std::max(
+        {sweep.change, std::abs(b.r - old.r), std::abs(b.g - old.g), std::abs(b.b - old.b)});
+    sweep.radiosity = std::max(sweep.radiosity, maxChannel(b));
     radiosity_[e] = b;
     return b;
   }
@@ -554,13 +794,12 @@ class Solver {
   Tolerance tol_;
   ElementTree tree_;
   std::vector<Link> links_;
-  std::vector<Tap> taps_;                    ///< of the Partial links (Link::tapBegin)
-  std::vector<double> deviationPool_;        ///< childDeviations' values (Link::deviationsAtA/B)
+  std::vector<Tap> taps_;              ///< of the Partial links (Link::tapBegin)
+  std::vector<double> deviationPool_;  ///< computeChildDeviations' values (Link::deviationsAtA/B)
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
   std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)
   double minArea_ = 0, threshold_ = 0;
-  double maxChange_ = 0, maxRadiosity_ = 0;
   RadiosityStats stats_;
   RefinementStats* current_ = nullptr;
 };
@@ -569,8 +808,17 @@ class Solver {
 
 RadiosityResult solveRadiosity(const Scene& scene, LinkVisibility& visibility,
                                const RadiosityOptions& options) {
-  Solver solver(scene, visibility, options);
-  return solver.run();
+  const int threads =
+      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  // Every parallel loop of the solver and of the oracle's estimateAll runs in this arena.
+  tbb::task_arena arena(threads);
+  std::optional<RadiosityResult> result;
+  arena.execute([&] {
+    Solver solver(scene, visibility, options);
+    result.emplace(solver.run());
+  });
+  result->stats.threads = threads;
+  return std::move(*result);
 }
 
 }  // namespace gv

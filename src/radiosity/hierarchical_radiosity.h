@@ -74,11 +74,14 @@ struct RadiosityOptions {
   /// Jacobi sweeps per solve at most (a safety net: convergence takes ~log(tol)/log(ρ_max)).
   int maxSweeps = 100000;
   uint64_t seed = 1;  ///< seeds every visibility sample (per link, so runs are deterministic)
+  /// Worker threads of refinement and solves (oneTBB); 0: all hardware threads. The solution is
+  /// the same, bit for bit, on any number.
+  int threads = 0;
   FormFactorOptions formFactor;
   /// Called with one line of progress per round (for stderr); may be empty.
   std::function<void(const std::string&)> progress;
   /// Called during each refinement round with (links of the round's start finished, their
-  /// count), at most every 256 links and at the end; may be empty.
+  /// count), rising, at most once per step of a few thousand links and at the end; may be empty.
   std::function<void(size_t, size_t)> refineProgress;
 };
 
@@ -117,6 +120,7 @@ struct RadiosityStats {
   double seconds = 0;
   bool converged = false;   ///< the last round refined nothing and the last solve met tolerance
   double emittedPower = 0;  ///< Σ A E over emitters (largest channel)
+  int threads = 0;          ///< worker threads the solver ran on
 };
 
 /// The solution: radiosity per patch and the refined hierarchy with its links.

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -44,9 +45,18 @@ struct VisibilityEstimate {
   std::vector<ClearSample> clearSamples;
 };
 
+/// One link whose visibility is wanted: estimate(*a, *b, parentTube, seed).
+struct LinkQuery {
+  const Element* a = nullptr;
+  const Element* b = nullptr;
+  TubeId parentTube = kNoTube;
+  uint64_t seed = 0;
+};
+
 /// A visibility oracle for links. The solver calls, in order: forEachCandidatePair once, then
-/// estimate for every link it creates (initial links with parentTube = the pair's tube from
-/// forEachCandidatePair; a refined link's children with the parent's tube).
+/// estimate (or estimateAll, for a batch) for every link it creates (initial links with
+/// parentTube = the pair's tube from forEachCandidatePair; a refined link's children with the
+/// parent's tube).
 ///
 /// Where the paper's `blockers` mode plugs in: forEachCandidatePair enumerates the VisibilityGraph
 /// (VISIBLE and PARTIAL pairs only, each with a tube holding its blocker list B(S, R));
@@ -69,6 +79,18 @@ class LinkVisibility {
   /// `seed` makes any sampling deterministic per link: equal inputs give equal answers.
   virtual VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                                       uint64_t seed) = 0;
+
+  /// estimate for every query, answer i for query i: the same answers, and the same state
+  /// afterwards (tube ids, statistics), as estimate called on each in index order, whatever the
+  /// number of threads. Implementations may evaluate the queries on oneTBB parallel loops (the
+  /// caller's task arena bounds the threads) and then keep their state in index order; this
+  /// default calls estimate one after another.
+  virtual std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) {
+    std::vector<VisibilityEstimate> out;
+    out.reserve(queries.size());
+    for (const LinkQuery& q : queries) out.push_back(estimate(*q.a, *q.b, q.parentTube, q.seed));
+    return out;
+  }
 };
 
 }  // namespace gv

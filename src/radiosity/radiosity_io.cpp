@@ -81,6 +81,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
                       {"solve_seconds", r.solveSeconds}});
   }
   return {{"visibility", stats.visibility},
+          {"threads", stats.threads},
           {"options",
            {{"rays_per_link", raysPerLink},
             {"epsilon", options.epsilon},

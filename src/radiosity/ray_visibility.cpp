@@ -7,6 +7,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/link_sampling.h"
+#include "util/parallel_for.h"
 
 namespace gv {
 
@@ -38,6 +39,15 @@ VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, T
       });
   if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0, {}};
   return estimateFromSamples(std::move(*v));
+}
+
+std::vector<VisibilityEstimate> RayVisibility::estimateAll(std::span<const LinkQuery> queries) {
+  std::vector<VisibilityEstimate> out(queries.size());
+  parallelForEach(queries.size(), [&](size_t i) {
+    const LinkQuery& q = queries[i];
+    out[i] = estimate(*q.a, *q.b, q.parentTube, q.seed);
+  });
+  return out;
 }
 
 }  // namespace gv

@@ -32,6 +32,8 @@ class RayVisibility final : public LinkVisibility {
   /// permutation), each tested with EmbreeScene::occluded ignoring the two patches themselves.
   VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                               uint64_t seed) override;
+  /// The queries in parallel: estimate keeps no state and EmbreeScene::occluded is thread-safe.
+  std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) override;
 
  private:
   const Scene& scene_;

@@ -8,6 +8,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/link_sampling.h"
+#include "util/parallel_for.h"
 #include "visibility/hull_overlap.h"
 
 namespace gv {
@@ -49,27 +50,26 @@ TubeId ShaftVisibility::store(std::vector<uint32_t> list) {
   return static_cast<TubeId>(tubes_.size() - 1);
 }
 
-VisibilityEstimate ShaftVisibility::estimate(const Element& a, const Element& b, TubeId parentTube,
-                                             uint64_t seed) {
+ShaftVisibility::Evaluation ShaftVisibility::evaluate(const Element& a, const Element& b,
+                                                      TubeId parentTube, uint64_t seed) const {
   const Tolerance& tol = tol_;
-  std::vector<uint32_t> list;
+  Evaluation out;
+  std::vector<uint32_t>& list = out.list;
   auto consider = [&](uint32_t p) {
     if (p == a.patch || p == b.patch) return;
-    ++hullTests_;
+    ++out.hullTests;
     if (meetsConvexHull(scene_.patches[p].polygon, a.polygon, b.polygon, tol)) list.push_back(p);
   };
   if (parentTube == kNoTube) {
     for (uint32_t p = 0; p < scene_.patches.size(); ++p) consider(p);
   } else {
     // The child's hull lies inside the parent's, so only the parent's candidates can meet it.
-    // (Copied: store() may grow tubes_ and move the parent's list.)
-    const std::vector<uint32_t> parent = tubes_.at(parentTube);
-    for (uint32_t p : parent) consider(p);
+    // (No store runs during evaluations, so the parent's list stays where it is.)
+    for (uint32_t p : tubes_.at(parentTube)) consider(p);
   }
-  VisibilityEstimate e;
   if (list.empty()) {
-    e.tube = store({});
-    return e;  // Visible, fraction 1, no rays
+    out.keep = true;
+    return out;  // Visible, fraction 1, no rays
   }
   SplitMix64 rng(seed);
   std::optional<SampledVisibility> v = sampleLinkVisibility(
@@ -78,10 +78,37 @@ VisibilityEstimate ShaftVisibility::estimate(const Element& a, const Element& b,
           return segmentCrossesPolygon(p, q, scene_.patches[c].polygon, eps_);
         });
       });
-  if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0, {}};
-  e = estimateFromSamples(std::move(*v));
-  e.tube = store(std::move(list));
+  if (!v) {
+    out.estimate = {VisibilityStatus::Invisible, 0.0, kNoTube, 0, {}};
+    return out;
+  }
+  out.estimate = estimateFromSamples(std::move(*v));
+  out.keep = true;
+  return out;
+}
+
+VisibilityEstimate ShaftVisibility::commit(Evaluation&& evaluation) {
+  hullTests_ += evaluation.hullTests;
+  VisibilityEstimate e = std::move(evaluation.estimate);
+  if (evaluation.keep) e.tube = store(std::move(evaluation.list));
   return e;
+}
+
+VisibilityEstimate ShaftVisibility::estimate(const Element& a, const Element& b, TubeId parentTube,
+                                             uint64_t seed) {
+  return commit(evaluate(a, b, parentTube, seed));
+}
+
+std::vector<VisibilityEstimate> ShaftVisibility::estimateAll(std::span<const LinkQuery> queries) {
+  std::vector<Evaluation> evaluations(queries.size());
+  parallelForEach(queries.size(), [&](size_t i) {
+    const LinkQuery& q = queries[i];
+    evaluations[i] = evaluate(*q.a, *q.b, q.parentTube, q.seed);
+  });
+  std::vector<VisibilityEstimate> out;
+  out.reserve(queries.size());
+  for (Evaluation& e : evaluations) out.push_back(commit(std::move(e)));
+  return out;
 }
 
 }  // namespace gv

@@ -31,6 +31,8 @@ class ShaftVisibility final : public LinkVisibility {
   void forEachCandidatePair(const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
   VisibilityEstimate estimate(const Element& a, const Element& b, TubeId parentTube,
                               uint64_t seed) override;
+  /// The hull tests and rays in parallel, the candidate lists stored in query order.
+  std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) override;
 
   /// Candidates examined by hull tests so far, and the mean list length of the links made.
   uint64_t hullTests() const { return hullTests_; }
@@ -39,6 +41,17 @@ class ShaftVisibility final : public LinkVisibility {
   }
 
  private:
+  /// What estimate finds before it stores anything: reads the stored lists only, so any number
+  /// of evaluations may run at once between the stores.
+  struct Evaluation {
+    VisibilityEstimate estimate;
+    std::vector<uint32_t> list;  ///< the candidates, stored as the link's tube if `keep`
+    bool keep = false;
+    uint64_t hullTests = 0;
+  };
+  Evaluation evaluate(const Element& a, const Element& b, TubeId parentTube, uint64_t seed) const;
+  /// Stores an evaluation's list and counts it; returns its estimate.
+  VisibilityEstimate commit(Evaluation&& evaluation);
   TubeId store(std::vector<uint32_t> list);
 
   const Scene& scene_;
