@@ -87,6 +87,13 @@ Action addRadiosityCommand(CLI::App& app) {
              "the one --quality sets; the default quality's other settings apply)")
           ->check(CLI::PositiveNumber)
           ->excludes(quality);
+  auto* relativeEpsilon =
+      cmd->add_option("--relative-epsilon", s->options.relativeEpsilon,
+                      "Receiver consistency bound: per subdivided element, the signed form-factor "
+                      "error its links hand its children, as a fraction of its radiosity (instead "
+                      "of the one --quality sets)")
+          ->check(CLI::PositiveNumber)
+          ->excludes(quality);
   cmd->add_option("--min-area", s->options.minArea,
                   "Smallest subdividable element, as a fraction of the total patch area")
       ->check(CLI::NonNegativeNumber);
@@ -113,15 +120,16 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--flat", s->flat, "Pictures with one colour per element instead of smooth");
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
-  return [s, coverage, epsilon] {
+  return [s, coverage, epsilon, relativeEpsilon] {
     const auto start = Clock::now();
     // The quality's settings, then an explicit --epsilon over them (with the default quality's
     // other settings).
-    s->epsilonGiven = epsilon->count() > 0;
-    const double givenEpsilon = s->options.epsilon;
+    s->epsilonGiven = epsilon->count() > 0 || relativeEpsilon->count() > 0;
+    const RadiosityOptions given = s->options;
     applyRadiosityQuality(parseRadiosityQuality(s->quality).value_or(kDefaultRadiosityQuality),
                           s->options);
-    if (s->epsilonGiven) s->options.epsilon = givenEpsilon;
+    if (epsilon->count() > 0) s->options.epsilon = given.epsilon;
+    if (relativeEpsilon->count() > 0) s->options.relativeEpsilon = given.relativeEpsilon;
     const Scene scene = loadPipelineScene(s->scene, {!s->noContactSplit, s->keepHidden});
     const double loadSeconds = secondsSince(start);
     const std::filesystem::path dir = makeOutputDirectory(s->output);

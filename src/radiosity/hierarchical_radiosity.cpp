@@ -471,8 +471,9 @@ class Solver {
     // The links at each subdivided, lit element, in link order (flat lists: linksAt[e] ..).
     const size_t n = tree_.size();
     std::vector<char> isExamined(n);
-    parallelForEach(
-        n, [&](size_t e) { isExamined[e] = !tree_[e].isLeaf() && maxChannel(radiosity_[e]) > 0; });
+    parallelForEach(n, [&](size_t e) {
+      isExamined[e] = !tree_[static_cast<uint32_t>(e)].isLeaf() && maxChannel(radiosity_[e]) > 0;
+    });
     auto examined = [&](uint32_t e) { return isExamined[e] != 0; };
     std::vector<uint32_t> linksAt(n + 1, 0);
     for (const Link& l : links_) {

@@ -20,6 +20,12 @@ struct RadiosityQualityLevel {
   std::string_view name;
   /// RadiosityOptions::epsilon: the BF threshold as a fraction of the total emitted power.
   double epsilon;
+  /// RadiosityOptions::relativeEpsilon: the receiver-consistency bound. 0.05 or 0.1 in place of
+  /// 0.01 at the same epsilon halved the links and the time on the office and the furnished
+  /// room and left their error against light tracing as it was or lower (the room's per-patch
+  /// RMS 3.2 -> 2.7 % at epsilon 1e-4): the tighter bound refines links whose errors mostly
+  /// cancel.
+  double relativeEpsilon;
   /// RadiosityOptions::formFactor.relativeTolerance: the quadrature's error budget. 1e-2 left
   /// every figure of the Cornell box, the office and the furnished room unchanged against
   /// light tracing (L2, mean bias and per-patch RMS within 0.1 %) and cut the time by ~35 %: a
@@ -28,16 +34,16 @@ struct RadiosityQualityLevel {
   std::string_view summary;  ///< one line for --help
 };
 
-/// The levels, in order. Each is ~3x the links of the one before (measured on the office).
-/// High is the CLI's default: per-patch RMS below 2 % against light tracing on the default
-/// office (1.6 % measured) at ~1/3 of Max's time. Max is RadiosityOptions{}'s setting.
+/// The levels, in order, chosen from a grid of (epsilon, relativeEpsilon) measured against light
+/// tracing (docs/BENCHMARKS.md). High is the CLI's default: on the default office per-patch RMS
+/// 1.6 %, mean bias -0.1 %, in under 3 s on two cores (`blockers`), a fifth of Max's time. Max
+/// is RadiosityOptions{}'s setting, the one the tests and earlier figures use.
 inline constexpr std::array<RadiosityQualityLevel, 5> kRadiosityQualityLevels{{
-    {RadiosityQuality::Draft, "draft", 3e-3, 1e-2,
-     "a preview: ~1-3 % L2, errors of 10-50 % on dim patches"},
-    {RadiosityQuality::Low, "low", 1e-3, 1e-2, "~1-2 % L2, dim patches off by up to ~20-45 %"},
-    {RadiosityQuality::Medium, "medium", 3e-4, 1e-2, "~1 % L2, per-patch RMS 2-5 %"},
-    {RadiosityQuality::High, "high", 1e-4, 1e-2, "~0.5 % L2, per-patch RMS ~1.6-2.7 % (default)"},
-    {RadiosityQuality::Max, "max", 2e-5, 1e-3, "~0.3 % L2, per-patch RMS ~1-2 %, ~3x high's time"},
+    {RadiosityQuality::Draft, "draft", 1e-3, 0.1, 1e-2, "a preview"},
+    {RadiosityQuality::Low, "low", 3e-4, 0.05, 1e-2, "L2 of B-Ke ~1-1.5 %"},
+    {RadiosityQuality::Medium, "medium", 1e-4, 0.05, 1e-2, "L2 ~0.5-1 %"},
+    {RadiosityQuality::High, "high", 5e-5, 0.1, 1e-2, "L2 ~0.4-0.7 %, per-patch RMS ~1.6-2.2 %"},
+    {RadiosityQuality::Max, "max", 2e-5, 0.01, 1e-3, "the reference setting, ~3-5x high's time"},
 }};
 
 inline constexpr RadiosityQuality kDefaultRadiosityQuality = RadiosityQuality::High;
@@ -51,6 +57,7 @@ constexpr const RadiosityQualityLevel& radiosityQualityLevel(RadiosityQuality qu
 inline void applyRadiosityQuality(RadiosityQuality quality, RadiosityOptions& options) {
   const RadiosityQualityLevel& level = radiosityQualityLevel(quality);
   options.epsilon = level.epsilon;
+  options.relativeEpsilon = level.relativeEpsilon;
   options.formFactor.relativeTolerance = level.formFactorTolerance;
 }
 

@@ -84,16 +84,18 @@ TEST_F(JsonCliTest, RadiosityQualityAndRunFigures) {
   const json draft = runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "d") +
                              " --no-pictures --quality draft --json");
   EXPECT_EQ(draft["options"]["quality"], "draft");
-  EXPECT_EQ(draft["options"]["epsilon"], 3e-3);
+  EXPECT_EQ(draft["options"]["epsilon"], 1e-3);
+  EXPECT_EQ(draft["options"]["relative_epsilon"], 0.1);
   const json& run = draft["run"];
   expectKeys(run, {"load_seconds", "visibility_seconds", "solve_seconds", "write_seconds",
                    "picture_seconds", "total_seconds", "peak_resident_bytes"});
   EXPECT_GT(run["peak_resident_bytes"].get<double>(), 1e6);
   EXPECT_GE(run["total_seconds"].get<double>(), run["solve_seconds"].get<double>());
   const json custom = runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "c") +
-                              " --no-pictures --epsilon 0.002 --json");
+                              " --no-pictures --epsilon 0.0005 --relative-epsilon 0.03 --json");
   EXPECT_EQ(custom["options"]["quality"], "custom");
-  EXPECT_EQ(custom["options"]["epsilon"], 0.002);
+  EXPECT_EQ(custom["options"]["epsilon"], 0.0005);
+  EXPECT_EQ(custom["options"]["relative_epsilon"], 0.03);
   // A finer level makes more links.
   EXPECT_GT(custom["totals"]["links"].get<size_t>(), draft["totals"]["links"].get<size_t>());
   EXPECT_NE(
