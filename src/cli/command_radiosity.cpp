@@ -101,6 +101,11 @@ Action addRadiosityCommand(CLI::App& app) {
                   "Stop solving when no radiosity changes by more than this fraction of the "
                   "largest in a sweep")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-links", s->options.maxLinks,
+                  "Stop refining once this many links exist (a memory guard: links over the "
+                  "threshold are then kept as they are and the run is reported not converged)")
+      ->capture_default_str()
+      ->check(CLI::Range(size_t{1}, size_t{4'000'000'000}));
   cmd->add_option("--max-refinements", s->options.maxRefinements, "Refine/solve rounds at most")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--seed", s->options.seed, "Seed of the visibility samples");
@@ -229,7 +234,11 @@ Action addRadiosityCommand(CLI::App& app) {
       fmt::print("contact split: {} patches cut along the patches resting on them into {} pieces\n",
                  scene.report.splitAtContacts, scene.report.contactPieces);
     fmt::print("{} rounds, {:.2f} s, {}; wrote {}\n", st.rounds.size(), st.seconds,
-               st.converged ? "converged" : "NOT converged (raise --max-refinements)",
+               st.converged ? "converged"
+               : st.linkBudgetReached
+                   ? "NOT converged: stopped at --max-links (a coarser --quality "
+                     "or a larger budget)"
+                   : "NOT converged (raise --max-refinements)",
                dir.string());
     fmt::print(
         "quality {} (epsilon {:g}); whole command {:.2f} s (load {:.2f}, visibility {:.2f}, "

@@ -133,7 +133,7 @@ class Solver {
       report(round);
       stats_.rounds.push_back(round);
     }
-    stats_.converged = refinedNothing && solved;
+    stats_.converged = refinedNothing && solved && !stats_.linkBudgetReached;
     for (const RefinementStats& r : stats_.rounds) {
       stats_.rays += r.rays;
       stats_.interactions += r.interactions;
@@ -372,7 +372,7 @@ class Solver {
     links_.clear();
     refinePending(pending, round, true);
     std::vector<LinkJob> jobs;
-    while (pushInconsistentLinks(jobs, round)) {
+    while (!stats_.linkBudgetReached && pushInconsistentLinks(jobs, round)) {
       pending.clear();
       for (size_t i = 0; i < jobs.size(); i += kBatch)
         makeLinks(std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), pending, nullptr);
@@ -430,7 +430,11 @@ class Solver {
       const size_t n = std::min(kBatch, stack.size());
       const size_t base = stack.size() - n;
       splits.resize(n);
-      parallelForEach(n, [&](size_t i) { splits[i] = splitOf(stack[base + i]); });
+      if (links_.size() + stack.size() >= options_.maxLinks) stats_.linkBudgetReached = true;
+      if (stats_.linkBudgetReached)
+        std::fill(splits.begin(), splits.end(), kNoElement);
+      else
+        parallelForEach(n, [&](size_t i) { splits[i] = splitOf(stack[base + i]); });
       jobs.clear();
       for (size_t i = 0; i < n; ++i) {
         const Link& l = stack[base + i];

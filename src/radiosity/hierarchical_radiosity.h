@@ -77,6 +77,11 @@ struct RadiosityOptions {
   /// Worker threads of refinement and solves (oneTBB); 0: all hardware threads. The solution is
   /// the same, bit for bit, on any number.
   int threads = 0;
+  /// Refinement stops making links once this many exist (links kept plus links waiting to be
+  /// examined): links still over the BF threshold are then kept as they are, the run reports
+  /// `linkBudgetReached` and is not converged. A guard against runs that would outgrow memory
+  /// (~100-200 bytes per link with its taps; 20 M links: a few GB).
+  size_t maxLinks = 20'000'000;
   FormFactorOptions formFactor;
   /// Called with one line of progress per round (for stderr); may be empty.
   std::function<void(const std::string&)> progress;
@@ -121,6 +126,7 @@ struct RadiosityStats {
   bool converged = false;   ///< the last round refined nothing and the last solve met tolerance
   double emittedPower = 0;  ///< Σ A E over emitters (largest channel)
   int threads = 0;          ///< worker threads the solver ran on
+  bool linkBudgetReached = false;  ///< refinement stopped at RadiosityOptions::maxLinks
 };
 
 /// The solution: radiosity per patch and the refined hierarchy with its links.

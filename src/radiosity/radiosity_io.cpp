@@ -90,7 +90,8 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
             {"min_area", options.minArea},
             {"tolerance", options.tolerance},
             {"max_refinements", options.maxRefinements},
-            {"seed", options.seed}}},
+            {"seed", options.seed},
+            {"max_links", options.maxLinks}}},
           {"patches", stats.patches},
           {"candidate_pairs", stats.candidatePairs},
           {"facing_pairs", stats.facingPairs},
@@ -102,7 +103,8 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
             {"links", stats.rounds.empty() ? 0 : stats.rounds.back().links.total()},
             {"elements", stats.rounds.empty() ? 0 : stats.rounds.back().elements},
             {"seconds", stats.seconds},
-            {"converged", stats.converged}}}};
+            {"converged", stats.converged},
+            {"link_budget_reached", stats.linkBudgetReached}}}};
 }
 
 void writeElementsPly(const RadiosityResult& result, const std::string& path, double white) {

@@ -121,6 +121,26 @@ TEST(RadiosityEnergyTest, CornellBoxPowerIsBoundedAndPlausible) {
   EXPECT_TRUE(r.stats.converged);
 }
 
+// The link budget stops refinement (a memory guard): the run says so, is not converged, holds
+// about the budget's links, and its answer is still a radiosity solution (above emission).
+TEST(RadiosityLinkBudgetTest, StopsRefiningAtTheBudgetAndSaysSo) {
+  const Scene scene = generateCornellBox();
+  RadiosityOptions options;
+  options.epsilon = 1e-4;
+  const RadiosityResult full = solveWithRays(scene, options);
+  ASSERT_FALSE(full.stats.linkBudgetReached);
+  ASSERT_GT(full.links.size(), 20'000u);
+  options.maxLinks = 5'000;
+  const RadiosityResult capped = solveWithRays(scene, options);
+  EXPECT_TRUE(capped.stats.linkBudgetReached);
+  EXPECT_FALSE(capped.stats.converged);
+  // Checked once per batch of 8192 links before it is split into children of <= 4 each.
+  EXPECT_LT(capped.links.size(), options.maxLinks + 4 * 8192);
+  EXPECT_LT(capped.links.size(), full.links.size());
+  for (size_t p = 0; p < scene.patches.size(); ++p)
+    EXPECT_GE(capped.patchRadiosity[p].g, scene.materials[scene.patches[p].material].emission.g);
+}
+
 TEST(RadiosityElementTest, SplitsPartitionTheirParent) {
   const Tolerance tol{10};
   const std::vector<std::vector<Vec3>> shapes{
