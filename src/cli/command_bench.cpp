@@ -102,7 +102,7 @@ Action addBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--radiosity", s->options.radiosity,
-                "Also solve radiosity (rays visibility, 16 rays per link)");
+                "Also solve radiosity (rays visibility, 16 rays per link, the default --quality)");
   cmd->add_option("--threads", s->options.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   cmd->add_option("--update-docs", s->updateDocs,

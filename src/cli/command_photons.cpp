@@ -123,11 +123,16 @@ PhotonResult readPhotonReference(const std::filesystem::path& dir, size_t patchC
     throw InputError(statsPath.string(), 0,
                      "no photons or photon_power: not a `globalvis photons` directory, or one "
                      "written before photon_power was recorded (run photons again)");
-  ref.photons = stats["photons"].get<uint64_t>();
-  ref.rays = stats.value("rays", uint64_t{0});
-  const auto& power = stats["photon_power"];
-  ref.photonPower = {power.at(0).get<double>(), power.at(1).get<double>(),
-                     power.at(2).get<double>()};
+  try {
+    ref.photons = stats["photons"].get<uint64_t>();
+    ref.rays = stats.value("rays", uint64_t{0});
+    const auto& power = stats["photon_power"];
+    ref.photonPower = {power.at(0).get<double>(), power.at(1).get<double>(),
+                       power.at(2).get<double>()};
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(statsPath.string(), 0,
+                     std::string("photons or photon_power malformed: ") + e.what());
+  }
   return ref;
 }
 

@@ -39,7 +39,7 @@ Action addRadiosityCommand(CLI::App& app) {
     std::string scene, output, visibility = "rays";
     std::string quality{radiosityQualityLevel(kDefaultRadiosityQuality).name};
     int rays = 16;
-    bool quiet = false, json = false, epsilonGiven = false;
+    bool quiet = false, json = false, customQuality = false;
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
     bool noPictures = false, flat = false, noContactSplit = false, keepHidden = false;
@@ -127,9 +127,9 @@ Action addRadiosityCommand(CLI::App& app) {
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s, coverage, epsilon, relativeEpsilon] {
     const auto start = Clock::now();
-    // The quality's settings, then an explicit --epsilon over them (with the default quality's
-    // other settings).
-    s->epsilonGiven = epsilon->count() > 0 || relativeEpsilon->count() > 0;
+    // The quality's settings, then an explicit --epsilon or --relative-epsilon over them (with
+    // the default quality's other settings): a "custom" quality.
+    s->customQuality = epsilon->count() > 0 || relativeEpsilon->count() > 0;
     const RadiosityOptions given = s->options;
     applyRadiosityQuality(parseRadiosityQuality(s->quality).value_or(kDefaultRadiosityQuality),
                           s->options);
@@ -202,7 +202,7 @@ Action addRadiosityCommand(CLI::App& app) {
       if (progress) std::cerr << fmt::format("pictures: {:.2f} s\n", pictures.seconds);
     }
     nlohmann::json stats = radiosityStatsJson(result.stats, s->options, s->rays);
-    stats["options"]["quality"] = s->epsilonGiven ? "custom" : s->quality;
+    stats["options"]["quality"] = s->customQuality ? "custom" : s->quality;
     if (const auto* blockers = dynamic_cast<const BlockerVisibility*>(visibility.get())) {
       stats["linespace"] = blockers->statsJson();
       stats["linespace"]["visibility_graph_seconds"] = visibilitySeconds;
@@ -243,7 +243,7 @@ Action addRadiosityCommand(CLI::App& app) {
     fmt::print(
         "quality {} (epsilon {:g}); whole command {:.2f} s (load {:.2f}, visibility {:.2f}, "
         "solve {:.2f}, write {:.2f}, pictures {:.2f}), peak memory {:.0f} MB\n",
-        s->epsilonGiven ? "custom" : s->quality, s->options.epsilon, secondsSince(start),
+        s->customQuality ? "custom" : s->quality, s->options.epsilon, secondsSince(start),
         loadSeconds, visibilitySeconds, st.seconds, writeSeconds, pictureSeconds, peakBytes / 1e6);
     return 0;
   };
