@@ -152,15 +152,9 @@ VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& 
 }
 
 std::vector<VisibilityEstimate> BlockerVisibility::estimateAll(std::span<const LinkQuery> queries) {
-  std::vector<Evaluation> evaluations(queries.size());
-  parallelForEach(queries.size(), [&](size_t i) {
-    const LinkQuery& q = queries[i];
-    evaluations[i] = evaluate(*q.a, *q.b, q.parentTube, q.seed);
-  });
-  std::vector<VisibilityEstimate> out;
-  out.reserve(queries.size());
-  for (Evaluation& e : evaluations) out.push_back(commit(std::move(e)));
-  return out;
+  return evaluateThenCommit(
+      queries, [&](const LinkQuery& q) { return evaluate(*q.a, *q.b, q.parentTube, q.seed); },
+      [&](Evaluation&& e) { return commit(std::move(e)); });
 }
 
 nlohmann::json BlockerVisibility::statsJson() const {

@@ -13,6 +13,7 @@
 
 #include "linespace/visibility_status.h"
 #include "radiosity/element_tree.h"
+#include "util/parallel_for.h"
 
 namespace gv {
 
@@ -92,5 +93,20 @@ class LinkVisibility {
     return out;
   }
 };
+
+/// estimateAll for oracles split into a read-only `evaluate(query)` (run in parallel) and a
+/// `commit(evaluation&&)` that stores state (run in query order), so the answers, tube ids and
+/// statistics are those of calling estimate in order.
+template <class Evaluate, class Commit>
+std::vector<VisibilityEstimate> evaluateThenCommit(std::span<const LinkQuery> queries,
+                                                   Evaluate&& evaluate, Commit&& commit) {
+  using Evaluation = decltype(evaluate(queries[0]));
+  std::vector<Evaluation> evaluations(queries.size());
+  parallelForEach(queries.size(), [&](size_t i) { evaluations[i] = evaluate(queries[i]); });
+  std::vector<VisibilityEstimate> out;
+  out.reserve(queries.size());
+  for (Evaluation& e : evaluations) out.push_back(commit(std::move(e)));
+  return out;
+}
 
 }  // namespace gv
