@@ -94,6 +94,12 @@ Action addRadiosityCommand(CLI::App& app) {
                       "of the one --quality sets)")
           ->check(CLI::PositiveNumber)
           ->excludes(quality);
+  auto* clusterSamples =
+      cmd->add_option("--cluster-samples", s->options.clusterSamples,
+                      "Clustering: sampled segments per patch and direction of a link between "
+                      "clusters of patches; 0 links every pair of patches (instead of the value "
+                      "--quality sets)")
+          ->check(CLI::Range(0, 1000));
   cmd->add_option("--min-area", s->options.minArea,
                   "Smallest subdividable element, as a fraction of the total patch area")
       ->check(CLI::NonNegativeNumber);
@@ -125,16 +131,18 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--flat", s->flat, "Pictures with one colour per element instead of smooth");
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
-  return [s, coverage, epsilon, relativeEpsilon] {
+  return [s, coverage, epsilon, relativeEpsilon, clusterSamples] {
     const auto start = Clock::now();
     // The quality's settings, then an explicit --epsilon or --relative-epsilon over them (with
     // the default quality's other settings): a "custom" quality.
-    s->customQuality = epsilon->count() > 0 || relativeEpsilon->count() > 0;
+    s->customQuality =
+        epsilon->count() > 0 || relativeEpsilon->count() > 0 || clusterSamples->count() > 0;
     const RadiosityOptions given = s->options;
     applyRadiosityQuality(parseRadiosityQuality(s->quality).value_or(kDefaultRadiosityQuality),
                           s->options);
     if (epsilon->count() > 0) s->options.epsilon = given.epsilon;
     if (relativeEpsilon->count() > 0) s->options.relativeEpsilon = given.relativeEpsilon;
+    if (clusterSamples->count() > 0) s->options.clusterSamples = given.clusterSamples;
     const Scene scene = loadPipelineScene(s->scene, {!s->noContactSplit, s->keepHidden});
     const double loadSeconds = secondsSince(start);
     const std::filesystem::path dir = makeOutputDirectory(s->output);
@@ -230,6 +238,9 @@ Action addRadiosityCommand(CLI::App& app) {
     const size_t elements = st.rounds.empty() ? 0 : st.rounds.back().elements;
     fmt::print("patches {}  links {}  elements {}  interactions {}  rays {}\n", st.patches, links,
                elements, st.interactions, st.rays);
+    if (st.clustered && !st.rounds.empty())
+      fmt::print("clusters: {} links between clusters of patches, {} clear samples\n",
+                 st.rounds.back().clusterLinks, st.rounds.back().clusterTaps);
     if (scene.report.splitAtContacts > 0)
       fmt::print("contact split: {} patches cut along the patches resting on them into {} pieces\n",
                  scene.report.splitAtContacts, scene.report.contactPieces);

@@ -108,7 +108,7 @@ BlockerVisibility::Evaluation BlockerVisibility::evaluate(const Element& a, cons
   SplitMix64 rng(seed);
   std::optional<SampledVisibility> sampled = sampleLinkVisibility(
       a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
-        return segmentBlocked(p, q, v.blockers, table_, tol_.length());
+        return gv::segmentBlocked(p, q, v.blockers, table_, tol_.length());
       });
   // No part of one faces the other: the unoccluded form factor is 0 and so is the transfer,
   // whatever the fraction; the link stays PARTIAL as the classification said.
@@ -144,6 +144,15 @@ VisibilityEstimate BlockerVisibility::commit(Evaluation&& evaluation) {
       break;
   }
   return e;
+}
+
+bool BlockerVisibility::segmentBlocked(uint32_t, const Vec3& from, uint32_t, const Vec3& to,
+                                       TubeId pairTube) const {
+  CHECK_MSG(pairTube < tubes_.size(), "blockers mode: a segment without a tube from this oracle");
+  if (pairTube == kVisibleTube) return false;
+  const TubeRecord t = tubes_[pairTube];
+  return gv::segmentBlocked(from, to, std::span(blockers_.data() + t.first, t.count), table_,
+                            tol_.length());
 }
 
 VisibilityEstimate BlockerVisibility::estimate(const Element& a, const Element& b,

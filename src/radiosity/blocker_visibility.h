@@ -53,6 +53,11 @@ class BlockerVisibility final : public LinkVisibility {
                               uint64_t seed) override;
   /// The classifications and rays in parallel; tubes, proofs and statistics kept in query order.
   std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) override;
+  bool answersSegments() const override { return true; }
+  /// A VISIBLE pair's segments are clear; a PARTIAL pair's are tested against its blocker list
+  /// (every first hit is in it, so the answer is the scene's).
+  bool segmentBlocked(uint32_t a, const Vec3& from, uint32_t b, const Vec3& to,
+                      TubeId pairTube) const override;
 
   /// Blocker outcomes and tube statuses per refinement level (a.depth + b.depth).
   const LinespaceStats& stats() const { return stats_; }

@@ -105,10 +105,11 @@ double insideDepth(const ConvexPolygon& polygon, const Vec3& p) {
 
 }  // namespace
 
-uint32_t ElementTree::deepestContaining(uint32_t root, const Vec3& p) const {
+uint32_t ElementTree::deepestContaining(uint32_t root, const Vec3& p, double minArea) const {
   uint32_t e = root;
   while (!elements_[e].isLeaf()) {
     const Element& el = elements_[e];
+    if (elements_[el.firstChild].area < minArea) break;
     uint32_t best = el.firstChild;
     double bestDepth = -INFINITY;
     for (uint32_t c = el.firstChild; c < el.firstChild + el.childCount; ++c) {

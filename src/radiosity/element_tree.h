@@ -58,7 +58,9 @@ class ElementTree {
   /// The deepest existing element below `root` (or `root` itself) whose polygon contains `p`, a
   /// point of root's polygon: at each level the child with the largest smallest signed distance
   /// to its edges, so a point on a shared edge or a rounding error away still gets a child.
-  uint32_t deepestContaining(uint32_t root, const Vec3& p) const;
+  /// Stops above children smaller than `minArea` (judged by the first child: siblings are
+  /// about equal).
+  uint32_t deepestContaining(uint32_t root, const Vec3& p, double minArea = 0) const;
 
   /// Number of leaves (elements without children).
   size_t leafCount() const;

@@ -15,6 +15,8 @@
 #include <span>
 #include <utility>
 
+#include "radiosity/cluster_links.h"
+#include "radiosity/patch_clusters.h"
 #include "radiosity/polygon_sampling.h"
 #include "util/check.h"
 #include "util/parallel_for.h"
@@ -72,6 +74,9 @@ struct LinkJob {
 /// enough that a step's clear samples take a few MB.
 constexpr size_t kBatch = 8192;
 
+/// Salts the seeds of cluster links, whose ids are cluster ids, apart from the element links'.
+constexpr uint64_t kClusterSeed = 0xC105'7E55ull;
+
 class Solver {
  public:
   Solver(const Scene& scene, LinkVisibility& visibility, const RadiosityOptions& options)
@@ -99,6 +104,10 @@ class Solver {
     threshold_ = options.epsilon * stats_.emittedPower;
     stats_.visibility = std::string(visibility.name());
     stats_.patches = scene.patches.size();
+    if (options.clusterSamples > 0 && visibility.answersSegments() && scene.patches.size() >= 2) {
+      clusters_.emplace(scene);
+      stats_.clustered = true;
+    }
   }
 
   RadiosityResult run() {
@@ -149,6 +158,16 @@ class Solver {
  private:
   /// The candidate pairs, a batch at a time (rays mode proposes every pair of patches).
   void makeInitialLinks() {
+    if (clusters_) {
+      candidates_.emplace(visibility_, scene_.patches.size());
+      stats_.candidatePairs = candidates_->count();
+      std::vector<LinkJob> jobs;
+      refineClusters({{0, 0}}, jobs);
+      for (size_t i = 0; i < jobs.size(); i += kBatch)
+        stats_.facingPairs += makeLinks(
+            std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), links_, nullptr);
+      return;
+    }
     std::vector<LinkJob> jobs;
     auto flush = [&] {
       stats_.facingPairs += makeLinks(jobs, links_, nullptr);
@@ -280,9 +299,17 @@ class Solver {
     if (v.status == VisibilityStatus::Partial && !v.clearSamples.empty()) {
       const double fba = fab * ea.area / eb.area;
       taps.reserve(v.clearSamples.size());
+      // A sample carries share w / fraction of the link's light; landing it in a piece smaller
+      // than that share of the element concentrates it there: an irradiance many times the
+      // unoccluded link's on a tiny element, rows of the gather summing over 1, and a solve that
+      // diverges (lit-doom-fd2-map03 with clusters, whose pairs of patches are linked only after
+      // the first round has cut them deep). So a tap ends no deeper than pieces of that share:
+      // no tap hands its element more than the link's unoccluded form factor.
+      const double fraction = std::max(v.fraction, 1e-300);
       for (const ClearSample& c : v.clearSamples) {
-        const uint32_t ta = tree_.deepestContaining(a, c.from);
-        const uint32_t tb = tree_.deepestContaining(b, c.to);
+        const double share = c.weight / fraction;
+        const uint32_t ta = tree_.deepestContaining(a, c.from, ea.area * share);
+        const uint32_t tb = tree_.deepestContaining(b, c.to, eb.area * share);
         taps.push_back({ta, tb, static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
                         static_cast<float>(fba * c.weight * eb.area / tree_[tb].area)});
       }
@@ -370,6 +397,31 @@ class Solver {
   void refineLinks(RefinementStats& round) {
     std::vector<Link> pending = std::move(links_);
     links_.clear();
+    if (clusters_ && !stats_.linkBudgetReached) {
+      // Cluster links whose bound now exceeds the threshold (the radiosities grew) are split;
+      // the pairs of patches they reach join this round's links.
+      updateClusterBrightness();
+      std::vector<std::pair<uint32_t, uint32_t>> split;
+      std::vector<ClusterLink> kept;
+      for (const ClusterLink& c : clusterLinks_) {
+        if (clusterTransferBound((*clusters_)[c.x], (*clusters_)[c.y], clusterBright_[c.x],
+                                 clusterBright_[c.y]) > threshold_) {
+          split.emplace_back(c.x, c.y);
+          ++round.linksRefined;
+        } else {
+          kept.push_back(c);
+        }
+      }
+      if (!split.empty()) {
+        clusterLinks_ = std::move(kept);
+        compactClusterTaps();
+        std::vector<LinkJob> jobs;
+        refineClusters(std::move(split), jobs);
+        for (size_t i = 0; i < jobs.size(); i += kBatch)
+          makeLinks(std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), pending,
+                    nullptr);
+      }
+    }
     refinePending(pending, round, true);
     std::vector<LinkJob> jobs;
     while (!stats_.linkBudgetReached && pushInconsistentLinks(jobs, round)) {
@@ -379,6 +431,91 @@ class Solver {
       jobs.clear();
       refinePending(pending, round, false);
     }
+  }
+
+  /// The largest leaf radiosity per cluster (children have larger ids than their parents).
+  void updateClusterBrightness() {
+    const ClusterTree& tree = *clusters_;
+    clusterBright_.assign(tree.size(), 0.0);
+    for (size_t k = tree.size(); k-- > 0;) {
+      const Cluster& c = tree[static_cast<uint32_t>(k)];
+      clusterBright_[k] = c.isLeaf() ? brightest_[tree.patchesOf(static_cast<uint32_t>(k))[0]]
+                                     : std::max(clusterBright_[c.left], clusterBright_[c.right]);
+    }
+  }
+
+  /// Refines the cluster pairs of `stack` (a cluster with itself stands for the pairs among its
+  /// children): a pair whose bound is under the threshold becomes a cluster link; a pair of two
+  /// patches over it becomes a job for an ordinary link (if the oracle lists the pair); any other
+  /// pair is split at the cluster with the larger box. Sequential (bounds only, cheap); the new
+  /// links' samples are then taken in parallel and kept in order.
+  void refineClusters(std::vector<std::pair<uint32_t, uint32_t>> stack,
+                      std::vector<LinkJob>& jobs) {
+    const ClusterTree& tree = *clusters_;
+    updateClusterBrightness();
+    std::vector<ClusterLink> made;
+    while (!stack.empty()) {
+      const auto [x, y] = stack.back();
+      stack.pop_back();
+      const Cluster& cx = tree[x];
+      const Cluster& cy = tree[y];
+      if (x == y) {
+        if (!cx.isLeaf()) {
+          stack.emplace_back(cx.left, cx.left);
+          stack.emplace_back(cx.right, cx.right);
+          stack.emplace_back(cx.left, cx.right);
+        }
+        continue;
+      }
+      if (links_.size() + jobs.size() + clusterLinks_.size() + made.size() >= options_.maxLinks)
+        stats_.linkBudgetReached = true;
+      if (stats_.linkBudgetReached ||
+          clusterTransferBound(cx, cy, clusterBright_[x], clusterBright_[y]) <= threshold_) {
+        made.push_back({x, y});
+        continue;
+      }
+      if (cx.isLeaf() && cy.isLeaf()) {
+        const uint32_t p = tree.patchesOf(x)[0], q = tree.patchesOf(y)[0];
+        if (const std::optional<TubeId> tube = candidates_->find(p, q))
+          jobs.push_back({std::min(p, q), std::max(p, q), *tube, 0});
+        continue;
+      }
+      const bool splitX = cy.isLeaf() || (!cx.isLeaf() && cx.box.diagonal() >= cy.box.diagonal());
+      if (splitX) {
+        stack.emplace_back(cx.left, y);
+        stack.emplace_back(cx.right, y);
+      } else {
+        stack.emplace_back(x, cy.left);
+        stack.emplace_back(x, cy.right);
+      }
+    }
+    std::vector<ClusterSampling> sampled(made.size());
+    parallelForEach(made.size(), [&](size_t i) {
+      sampled[i] = sampleClusterLink(tree, tree_, *candidates_, visibility_, made[i].x, made[i].y,
+                                     options_.clusterSamples,
+                                     mixSeed(options_.seed ^ kClusterSeed, made[i].x, made[i].y));
+    });
+    for (size_t i = 0; i < made.size(); ++i) {
+      ClusterLink& c = made[i];
+      c.tapBegin = static_cast<uint32_t>(clusterTaps_.size());
+      c.tapCount = static_cast<uint32_t>(sampled[i].taps.size());
+      clusterTaps_.insert(clusterTaps_.end(), sampled[i].taps.begin(), sampled[i].taps.end());
+      current_->rays += sampled[i].rays;
+      clusterLinks_.push_back(c);
+    }
+    current_->interactions += made.size();
+  }
+
+  /// Drops the samples of cluster links that were split (they are only appended).
+  void compactClusterTaps() {
+    std::vector<ClusterTap> kept;
+    for (ClusterLink& c : clusterLinks_) {
+      const auto begin = static_cast<uint32_t>(kept.size());
+      kept.insert(kept.end(), clusterTaps_.begin() + c.tapBegin,
+                  clusterTaps_.begin() + c.tapBegin + c.tapCount);
+      c.tapBegin = begin;
+    }
+    clusterTaps_ = std::move(kept);
   }
 
   /// Queues the links from the children of `split` (an end of `l`, with children) to l's other
@@ -669,6 +806,9 @@ class Solver {
         ++g.tapBegin[taps_[t].b + 1];
       }
     }
+    for (const ClusterLink& c : clusterLinks_)
+      for (uint32_t t = c.tapBegin; t < c.tapBegin + c.tapCount; ++t)
+        ++g.tapBegin[clusterTaps_[t].receiver + 1];
     for (size_t e = 0; e < n; ++e) {
       g.linkBegin[e + 1] += g.linkBegin[e];
       g.tapBegin[e + 1] += g.tapBegin[e];
@@ -691,6 +831,11 @@ class Solver {
         g.tapTerms[tapAt[tap.b]++] = {tap.a, tap.intoB};
       }
     }
+    // Cluster links: each clear sample from the element it left to the patch it reached.
+    for (const ClusterLink& c : clusterLinks_)
+      for (uint32_t t = c.tapBegin; t < c.tapBegin + c.tapCount; ++t)
+        g.tapTerms[tapAt[clusterTaps_[t].receiver]++] = {clusterTaps_[t].source,
+                                                         clusterTaps_[t].coefficient};
     return g;
   }
 
@@ -771,6 +916,8 @@ class Solver {
     round.refineSeconds = secondsSince(t0);
     round.elements = tree_.size();
     round.leaves = tree_.leafCount();
+    round.clusterLinks = clusterLinks_.size();
+    round.clusterTaps = clusterTaps_.size();
     for (const Link& l : links_) {
       if (l.status == VisibilityStatus::Visible)
         ++round.links.visible;
@@ -786,10 +933,11 @@ class Solver {
     options_.progress(
         fmt::format("radiosity round {}: {} links refined, {} links (V {} / P {} / I {}), created "
                     "V {} P {} I {}, "
-                    "{} elements, {} rays, refine {:.2f} s, solve {} sweeps {:.2f} s",
+                    "{} cluster links, {} elements, {} rays, refine {:.2f} s, solve {} sweeps "
+                    "{:.2f} s",
                     r.round, r.linksRefined, r.links.total(), r.links.visible, r.links.partial,
                     r.links.invisible, r.created.visible, r.created.partial, r.created.invisible,
-                    r.elements, r.rays, r.refineSeconds, r.sweeps, r.solveSeconds));
+                    r.clusterLinks, r.elements, r.rays, r.refineSeconds, r.sweeps, r.solveSeconds));
   }
 
   const Scene& scene_;
@@ -806,6 +954,13 @@ class Solver {
   double minArea_ = 0, threshold_ = 0;
   RadiosityStats stats_;
   RefinementStats* current_ = nullptr;
+  /// Clustering (RadiosityOptions::clusterSamples): the tree, the oracle's candidate pairs, the
+  /// links between clusters with their samples, and per cluster its largest leaf radiosity.
+  std::optional<ClusterTree> clusters_;
+  std::optional<CandidatePairs> candidates_;
+  std::vector<ClusterLink> clusterLinks_;
+  std::vector<ClusterTap> clusterTaps_;
+  std::vector<double> clusterBright_;
 };
 
 }  // namespace

@@ -82,6 +82,12 @@ struct RadiosityOptions {
   /// `linkBudgetReached` and is not converged. A guard against runs that would outgrow memory
   /// (~100-200 bytes per link with its taps; 20 M links: a few GB).
   size_t maxLinks = 20'000'000;
+  /// Clustering (patch_clusters.h, cluster_links.h): far groups of patches exchange light through
+  /// one sampled link while a bound of what it carries stays under the BF threshold, so links
+  /// grow about linearly rather than as n². The value is the samples per patch per direction of
+  /// a cluster link; 0: no clustering, every candidate pair of patches gets an exact link at the
+  /// top (HSA91). Oracles that cannot test single segments (`shaft`) run without clusters.
+  int clusterSamples = 0;
   FormFactorOptions formFactor;
   /// Called with one line of progress per round (for stderr); may be empty.
   std::function<void(const std::string&)> progress;
@@ -109,7 +115,9 @@ struct RefinementStats {
   size_t interactions = 0;  ///< form factor + visibility evaluations this round
   uint64_t rays = 0;        ///< visibility rays cast this round
   double refineSeconds = 0;
-  int sweeps = 0;  ///< Jacobi sweeps of the solve that followed
+  size_t clusterLinks = 0;  ///< cluster links alive after the round (clustering only)
+  size_t clusterTaps = 0;   ///< their clear samples
+  int sweeps = 0;           ///< Jacobi sweeps of the solve that followed
   double solveSeconds = 0;
 };
 
@@ -127,6 +135,7 @@ struct RadiosityStats {
   double emittedPower = 0;  ///< Σ A E over emitters (largest channel)
   int threads = 0;          ///< worker threads the solver ran on
   bool linkBudgetReached = false;  ///< refinement stopped at RadiosityOptions::maxLinks
+  bool clustered = false;          ///< links between clusters of patches were used
 };
 
 /// The solution: radiosity per patch and the refined hierarchy with its links.

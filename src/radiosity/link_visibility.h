@@ -92,6 +92,20 @@ class LinkVisibility {
     for (const LinkQuery& q : queries) out.push_back(estimate(*q.a, *q.b, q.parentTube, q.seed));
     return out;
   }
+
+  /// Clustering (patch_clusters.h) links far groups of patches through single sampled segments
+  /// rather than through links per pair, and asks about them here. Oracles that cannot answer
+  /// say false, and the solver then links every candidate pair.
+  virtual bool answersSegments() const { return false; }
+  /// Whether every pair of patches is a candidate (forEachCandidatePair visits all n(n-1)/2, and
+  /// with tube kNoTube), so that the solver need not keep the candidates to look pairs up.
+  virtual bool everyPairIsCandidate() const { return false; }
+  /// Whether the segment from `from` on patch `a` to `to` on patch `b` (a candidate pair, with
+  /// the tube forEachCandidatePair gave it) is blocked. Thread-safe. Only if answersSegments().
+  virtual bool segmentBlocked(uint32_t /*a*/, const Vec3& /*from*/, uint32_t /*b*/,
+                              const Vec3& /*to*/, TubeId /*pairTube*/) const {
+    return true;
+  }
 };
 
 /// estimateAll for oracles split into a read-only `evaluate(query)` (run in parallel) and a

@@ -32,13 +32,18 @@ VisibilityEstimate RayVisibility::estimate(const Element& a, const Element& b, T
   SplitMix64 rng(seed);
   std::optional<SampledVisibility> v = sampleLinkVisibility(
       a.polygon, b.polygon, raysPerLink_, tol_, rng, [&](const Vec3& p, const Vec3& q) {
-        const Vec3 d = q - p;
-        const double len = length(d);
-        const double pull = len > 0 ? std::min(0.01, endOffset_ / len) : 0.0;
-        return rays_.occluded(p + d * pull, q - d * pull, a.patch, b.patch);
+        return segmentBlocked(a.patch, p, b.patch, q, kNoTube);
       });
   if (!v) return {VisibilityStatus::Invisible, 0.0, kNoTube, 0, {}};
   return estimateFromSamples(std::move(*v));
+}
+
+bool RayVisibility::segmentBlocked(uint32_t a, const Vec3& from, uint32_t b, const Vec3& to,
+                                   TubeId) const {
+  const Vec3 d = to - from;
+  const double len = length(d);
+  const double pull = len > 0 ? std::min(0.01, endOffset_ / len) : 0.0;
+  return rays_.occluded(from + d * pull, to - d * pull, a, b);
 }
 
 std::vector<VisibilityEstimate> RayVisibility::estimateAll(std::span<const LinkQuery> queries) {

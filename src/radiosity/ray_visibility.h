@@ -34,6 +34,11 @@ class RayVisibility final : public LinkVisibility {
                               uint64_t seed) override;
   /// The queries in parallel: estimate keeps no state and EmbreeScene::occluded is thread-safe.
   std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) override;
+  bool answersSegments() const override { return true; }
+  bool everyPairIsCandidate() const override { return true; }
+  /// EmbreeScene::occluded ignoring a and b, the ends pulled in as for a link's rays.
+  bool segmentBlocked(uint32_t a, const Vec3& from, uint32_t b, const Vec3& to,
+                      TubeId pairTube) const override;
 
  private:
   const Scene& scene_;

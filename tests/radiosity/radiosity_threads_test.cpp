@@ -14,6 +14,7 @@
 
 #include "bsp/subdivision.h"
 #include "generators/cornell_box.h"
+#include "generators/furnished_room.h"
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/polygon_sampling.h"
@@ -120,6 +121,40 @@ TEST_P(RadiosityThreadsTest, SolutionIsTheSameOnOneTwoAndThreeThreads) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Modes, RadiosityThreadsTest, testing::Values("rays", "shaft", "blockers"));
+
+TEST(RadiosityThreadsTest, ClusteredSolutionIsTheSameOnOneAndTwoThreads) {
+  // Cluster links are sampled in parallel and kept in order: the furnished room (thousands of
+  // cluster links) in both modes that answer single segments.
+  const Scene scene = generateFurnishedRoom();
+  const EmbreeScene bvh(scene);
+  PropagationOptions p;
+  p.threads = 1;
+  const VisibilityGraph graph = computeVisibility(scene, buildSubdivision(scene), p);
+  RadiosityOptions options;
+  options.maxRefinements = 1;
+  options.epsilon = 1e-3;
+  options.clusterSamples = 2;
+  for (const std::string mode : {"rays", "blockers"}) {
+    SCOPED_TRACE(mode);
+    std::vector<RadiosityResult> results;
+    for (const int threads : {1, 2}) {
+      options.threads = threads;
+      std::unique_ptr<LinkVisibility> visibility;
+      if (mode == "rays")
+        visibility = std::make_unique<RayVisibility>(scene, bvh, 8);
+      else
+        visibility = std::make_unique<BlockerVisibility>(scene, graph, 8);
+      results.push_back(solveRadiosity(scene, *visibility, options));
+    }
+    ASSERT_TRUE(results[0].stats.clustered);
+    EXPECT_GT(results[0].stats.rounds.back().clusterLinks, 1000u);
+    for (size_t r = 0; r < results[0].stats.rounds.size(); ++r) {
+      EXPECT_EQ(results[0].stats.rounds[r].clusterLinks, results[1].stats.rounds[r].clusterLinks);
+      EXPECT_EQ(results[0].stats.rounds[r].clusterTaps, results[1].stats.rounds[r].clusterTaps);
+    }
+    expectSameSolution(results[0], results[1]);
+  }
+}
 
 /// Queries for children of the initial links, two levels down (parents' tubes from the oracle).
 std::vector<VisibilityEstimate> estimateTree(LinkVisibility& vis, ElementTree& tree, bool batched) {

@@ -1,0 +1,96 @@
+// Cluster links: candidate lookup, the transfer bound, and the sampled taps.
+#include "radiosity/cluster_links.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "radiosity/polygon_sampling.h"
+
+namespace gv {
+
+CandidatePairs::CandidatePairs(LinkVisibility& visibility, size_t patches) {
+  if (visibility.everyPairIsCandidate()) {
+    every_ = true;
+    count_ = patches < 2 ? 0 : patches * (patches - 1) / 2;
+    return;
+  }
+  std::vector<std::pair<uint64_t, TubeId>> pairs;
+  visibility.forEachCandidatePair([&](uint32_t a, uint32_t b, TubeId tube) {
+    if (a > b) std::swap(a, b);
+    pairs.emplace_back(uint64_t{a} << 32 | b, tube);
+  });
+  std::sort(pairs.begin(), pairs.end());
+  keys_.reserve(pairs.size());
+  tubes_.reserve(pairs.size());
+  for (const auto& [key, tube] : pairs) {
+    keys_.push_back(key);
+    tubes_.push_back(tube);
+  }
+  count_ = keys_.size();
+}
+
+std::optional<TubeId> CandidatePairs::find(uint32_t a, uint32_t b) const {
+  if (every_) return kNoTube;
+  if (a > b) std::swap(a, b);
+  const uint64_t key = uint64_t{a} << 32 | b;
+  const auto it = std::lower_bound(keys_.begin(), keys_.end(), key);
+  if (it == keys_.end() || *it != key) return std::nullopt;
+  return tubes_[static_cast<size_t>(it - keys_.begin())];
+}
+
+double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, double brightY) {
+  const double d = boxDistance(x.box, y.box);
+  if (!(d > 0)) return INFINITY;
+  const double piD2 = std::numbers::pi * d * d;
+  // Only well-separated clusters: a sample carries up to A_Y / (π d²) / samplesPerPatch, and
+  // close clusters (whose light may still be 0 in the first round) would hand single samples
+  // form factors near or over 1, noise enough to make the solve diverge.
+  if (std::max(x.area, y.area) > kMaxClusterFormFactor * piD2) return INFINITY;
+  const double intoX = x.reflectance * x.area * brightY * y.area / piD2;
+  const double intoY = y.reflectance * y.area * brightX * x.area / piD2;
+  return std::max(intoX, intoY);
+}
+
+namespace {
+
+/// The taps into the patches of `to` from cluster `from` (one direction of a link).
+void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
+                const CandidatePairs& candidates, const LinkVisibility& visibility, uint32_t to,
+                uint32_t from, int samplesPerPatch, SplitMix64& rng, ClusterSampling& out) {
+  const double sourceArea = clusters[from].area;
+  const double share = sourceArea / samplesPerPatch;
+  for (const uint32_t p : clusters.patchesOf(to)) {
+    const ConvexPolygon& receiver = elements[p].polygon;
+    const std::vector<Vec3> points = stratifiedPoints(receiver.vertices, samplesPerPatch, rng);
+    for (const Vec3& x : points) {
+      const uint32_t q = clusters.patchByArea(from, rng.uniform());
+      const ConvexPolygon& source = elements[q].polygon;
+      const Vec3 y = stratifiedPoints(source.vertices, 1, rng).front();
+      // cos θx cos θy / r², 0 when either faces away: no ray needed.
+      const double kernel = kernelWeight(x, receiver.normal(), y, source.normal());
+      if (!(kernel > 0)) continue;
+      const std::optional<TubeId> tube = candidates.find(p, q);
+      if (!tube) continue;
+      ++out.rays;
+      if (visibility.segmentBlocked(p, x, q, y, *tube)) continue;
+      out.taps.push_back({p, elements.deepestContaining(q, y),
+                          static_cast<float>(share * kernel / std::numbers::pi)});
+    }
+  }
+}
+
+}  // namespace
+
+ClusterSampling sampleClusterLink(const ClusterTree& clusters, const ElementTree& elements,
+                                  const CandidatePairs& candidates,
+                                  const LinkVisibility& visibility, uint32_t x, uint32_t y,
+                                  int samplesPerPatch, uint64_t seed) {
+  ClusterSampling out;
+  SplitMix64 rng(seed);
+  sampleInto(clusters, elements, candidates, visibility, x, y, samplesPerPatch, rng, out);
+  sampleInto(clusters, elements, candidates, visibility, y, x, samplesPerPatch, rng, out);
+  return out;
+}
+
+}  // namespace gv

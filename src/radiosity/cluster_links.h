@@ -1,0 +1,83 @@
+// Links between clusters of patches (patch_clusters.h): far groups of patches exchange their
+// light through one link whose transfer is estimated by sampled segments, rather than through a
+// link per pair with an exact form factor. The solver keeps a cluster link while a bound of the
+// light it can carry stays under the BF threshold, and splits it otherwise, down to pairs of
+// patches, which get ordinary links.
+//
+// How the light goes: Smits, Arvo & Greenberg (1994) and Sillion (1995) give a cluster one
+// radiant intensity and its receivers one irradiance, which ignores which of a cluster's patches
+// see each other: light from one room lands on the inward faces of a closed solid in the next.
+// Here every sample is a segment from a point on a receiving patch to a point on a source patch,
+// tested by the link oracle; only clear samples carry light, from the element the segment leaves
+// to the patch it reaches. A patch that no clear segment reaches receives nothing through a
+// cluster link, so the clusters do not open the leaks the oracles close.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "radiosity/element_tree.h"
+#include "radiosity/link_visibility.h"
+#include "radiosity/patch_clusters.h"
+
+namespace gv {
+
+/// A link between clusters x and y (not both the same; either may be a leaf, one patch).
+struct ClusterLink {
+  uint32_t x = 0, y = 0;
+  uint32_t tapBegin = 0, tapCount = 0;  ///< its samples in the solver's ClusterTap store
+};
+
+/// One clear sample of a cluster link, in one direction: `receiver` (a patch) gathers
+/// `coefficient` · B(source) per unit area (source: the deepest element at the segment's far end).
+struct ClusterTap {
+  uint32_t receiver = 0, source = 0;
+  float coefficient = 0;
+};
+
+/// The oracle's candidate pairs, looked up by pair (every pair when the oracle says so).
+class CandidatePairs {
+ public:
+  explicit CandidatePairs(LinkVisibility& visibility, size_t patches);
+  /// The pair's tube, or nullopt when (a, b) is not a candidate (no light passes). a != b.
+  std::optional<TubeId> find(uint32_t a, uint32_t b) const;
+  /// How many pairs are candidates.
+  size_t count() const { return count_; }
+
+ private:
+  bool every_ = false;
+  size_t count_ = 0;
+  std::vector<uint64_t> keys_;  ///< a << 32 | b, a < b, sorted
+  std::vector<TubeId> tubes_;
+};
+
+/// Clusters are linked only when the form factor from any point of one to the other is at most
+/// this (by the bound A / (π d²)): a single sample then carries little, and the sampled transfer
+/// stays close to its mean.
+inline constexpr double kMaxClusterFormFactor = 0.05;
+
+/// An upper bound of the light the link between x and y can carry, in either direction, as
+/// reflected power: ρ_max(X) A_X B_max(Y) A_Y / (π d²), d the distance between the two boxes
+/// (the form factor from a point to Y is at most A_Y / (π d²)); infinite when the clusters are
+/// not well separated (kMaxClusterFormFactor). `brightX`, `brightY`: the largest radiosity over
+/// each cluster.
+double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, double brightY);
+
+/// The clear samples of the link between clusters x and y: for every patch of either cluster,
+/// `samplesPerPatch` segments from a stratified point on it to a point on the other cluster (its
+/// patch picked by area, the point uniform on it), weighted by the form-factor kernel and tested
+/// with visibility.segmentBlocked (pairs that are not candidates are blocked). Unbiased: the taps
+/// into a patch sum, in expectation, to its form factor to the other cluster, visibility
+/// included. Deterministic per `seed`. Reads only: links may be sampled in parallel.
+struct ClusterSampling {
+  std::vector<ClusterTap> taps;
+  uint64_t rays = 0;
+};
+ClusterSampling sampleClusterLink(const ClusterTree& clusters, const ElementTree& elements,
+                                  const CandidatePairs& candidates,
+                                  const LinkVisibility& visibility, uint32_t x, uint32_t y,
+                                  int samplesPerPatch, uint64_t seed);
+
+}  // namespace gv
