@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "radiosity/link_sampling.h"
 #include "radiosity/polygon_sampling.h"
 
 namespace gv {
@@ -56,8 +57,9 @@ namespace {
 
 /// The taps into the patches of `to` from cluster `from` (one direction of a link).
 void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
-                const CandidatePairs& candidates, const LinkVisibility& visibility, uint32_t to,
-                uint32_t from, int samplesPerPatch, SplitMix64& rng, ClusterSampling& out) {
+                const CandidatePairs& candidates, const LinkVisibility& visibility,
+                const Tolerance& tol, uint32_t to, uint32_t from, int samplesPerPatch,
+                SplitMix64& rng, ClusterSampling& out) {
   const double sourceArea = clusters[from].area;
   const double share = sourceArea / samplesPerPatch;
   for (const uint32_t p : clusters.patchesOf(to)) {
@@ -73,7 +75,13 @@ void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
       const std::optional<TubeId> tube = candidates.find(p, q);
       if (!tube) continue;
       ++out.rays;
-      if (visibility.segmentBlocked(p, x, q, y, *tube)) continue;
+      auto blocked = [&](const Vec3& from, const Vec3& to) {
+        return visibility.segmentBlocked(p, from, q, to, *tube);
+      };
+      if (blocked(x, y)) continue;
+      // A single clear sample carries the whole tap: one through a crack is a leak.
+      out.rays += 2;
+      if (throughCrack(x, y, tol, blocked)) continue;
       out.taps.push_back({p, elements.deepestContaining(q, y),
                           static_cast<float>(share * kernel / std::numbers::pi)});
     }
@@ -84,12 +92,12 @@ void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
 
 ClusterSampling sampleClusterLink(const ClusterTree& clusters, const ElementTree& elements,
                                   const CandidatePairs& candidates,
-                                  const LinkVisibility& visibility, uint32_t x, uint32_t y,
-                                  int samplesPerPatch, uint64_t seed) {
+                                  const LinkVisibility& visibility, const Tolerance& tol,
+                                  uint32_t x, uint32_t y, int samplesPerPatch, uint64_t seed) {
   ClusterSampling out;
   SplitMix64 rng(seed);
-  sampleInto(clusters, elements, candidates, visibility, x, y, samplesPerPatch, rng, out);
-  sampleInto(clusters, elements, candidates, visibility, y, x, samplesPerPatch, rng, out);
+  sampleInto(clusters, elements, candidates, visibility, tol, x, y, samplesPerPatch, rng, out);
+  sampleInto(clusters, elements, candidates, visibility, tol, y, x, samplesPerPatch, rng, out);
   return out;
 }
 

@@ -77,7 +77,7 @@ struct ClusterSampling {
 };
 ClusterSampling sampleClusterLink(const ClusterTree& clusters, const ElementTree& elements,
                                   const CandidatePairs& candidates,
-                                  const LinkVisibility& visibility, uint32_t x, uint32_t y,
-                                  int samplesPerPatch, uint64_t seed);
+                                  const LinkVisibility& visibility, const Tolerance& tol,
+                                  uint32_t x, uint32_t y, int samplesPerPatch, uint64_t seed);
 
 }  // namespace gv

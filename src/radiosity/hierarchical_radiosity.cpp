@@ -45,8 +45,10 @@ double maxChannel(const Rgb& x) {
 constexpr double kSampleBound = 3.0;
 
 /// Where a Partial link's light passes: one clear sample of its visibility, as the elements its
-/// two ends lie in (the deepest that existed when the link was made) and the form factors that
-/// carry the sample's share of the link between them. A link hands its receiver the source's
+/// two ends lie in and the form factors that carry the sample's share of the link between them.
+/// Each direction has its own pair: the source is the deepest element at the sample's end (its
+/// radiosity there, not its parent's mean), the receiver the deepest no smaller than the
+/// sample's share of its link end (see finishLink). A link hands its receiver the source's
 /// mean radiosity, spread evenly; when part of the path is blocked, the part of the source in
 /// view is often not its average and the lit part of the receiver not all of it (a ceiling
 /// patch spanning a lit room and a dark corridor sees only the room's floor). Gathering through
@@ -54,9 +56,10 @@ constexpr double kSampleBound = 3.0;
 /// through the means, 1.6 % through taps. Shares sum to the link's visibility fraction, so each
 /// element's total gather (its mean) is unchanged; only where it lands and from where moves.
 struct Tap {
-  uint32_t a = 0, b = 0;  ///< elements at the sample's ends (descendants of the link's a and b)
-  float intoA = 0;        ///< tap.a gathers intoA · B(tap.b): F_ab · share · A_a / A_tap.a
-  float intoB = 0;        ///< tap.b gathers intoB · B(tap.a)
+  uint32_t a = 0, b = 0;  ///< receivers at the sample's ends (descendants of the link's a and b)
+  uint32_t fromA = 0, fromB = 0;  ///< sources at the sample's ends (a's and b's deepest there)
+  float intoA = 0;  ///< tap.a gathers intoA · B(tap.fromB): F_ab · share · A_a / A_tap.a
+  float intoB = 0;  ///< tap.b gathers intoB · B(tap.fromA)
 };
 
 /// A link to make between elements a and b, refining a link whose oracle state was `tube`;
@@ -73,6 +76,10 @@ struct LinkJob {
 /// number of threads. Large enough to keep the cores busy (a step's jobs take tens of ms), small
 /// enough that a step's clear samples take a few MB.
 constexpr size_t kBatch = 8192;
+
+/// A cluster link (16 bytes, and its few clear samples) counts this fraction of a link (~150
+/// bytes with its taps and caches) against RadiosityOptions::maxLinks, a memory guard.
+constexpr size_t kClusterLinkShare = 8;
 
 /// Salts the seeds of cluster links, whose ids are cluster ids, apart from the element links'.
 constexpr uint64_t kClusterSeed = 0xC105'7E55ull;
@@ -310,7 +317,10 @@ class Solver {
         const double share = c.weight / fraction;
         const uint32_t ta = tree_.deepestContaining(a, c.from, ea.area * share);
         const uint32_t tb = tree_.deepestContaining(b, c.to, eb.area * share);
-        taps.push_back({ta, tb, static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
+        const uint32_t sa = tree_.deepestContaining(ta, c.from);
+        const uint32_t sb = tree_.deepestContaining(tb, c.to);
+        taps.push_back({ta, tb, sa, sb,
+                        static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
                         static_cast<float>(fba * c.weight * eb.area / tree_[tb].area)});
       }
     }
@@ -467,7 +477,8 @@ class Solver {
         }
         continue;
       }
-      if (links_.size() + jobs.size() + clusterLinks_.size() + made.size() >= options_.maxLinks)
+      if (links_.size() + jobs.size() + (clusterLinks_.size() + made.size()) / kClusterLinkShare >=
+          options_.maxLinks)
         stats_.linkBudgetReached = true;
       if (stats_.linkBudgetReached ||
           clusterTransferBound(cx, cy, clusterBright_[x], clusterBright_[y]) <= threshold_) {
@@ -491,8 +502,8 @@ class Solver {
     }
     std::vector<ClusterSampling> sampled(made.size());
     parallelForEach(made.size(), [&](size_t i) {
-      sampled[i] = sampleClusterLink(tree, tree_, *candidates_, visibility_, made[i].x, made[i].y,
-                                     options_.clusterSamples,
+      sampled[i] = sampleClusterLink(tree, tree_, *candidates_, visibility_, tol_, made[i].x,
+                                     made[i].y, options_.clusterSamples,
                                      mixSeed(options_.seed ^ kClusterSeed, made[i].x, made[i].y));
     });
     for (size_t i = 0; i < made.size(); ++i) {
@@ -567,7 +578,9 @@ class Solver {
       const size_t n = std::min(kBatch, stack.size());
       const size_t base = stack.size() - n;
       splits.resize(n);
-      if (links_.size() + stack.size() >= options_.maxLinks) stats_.linkBudgetReached = true;
+      if (links_.size() + stack.size() + clusterLinks_.size() / kClusterLinkShare >=
+          options_.maxLinks)
+        stats_.linkBudgetReached = true;
       if (stats_.linkBudgetReached)
         std::fill(splits.begin(), splits.end(), kNoElement);
       else
@@ -827,8 +840,8 @@ class Solver {
       // the part of the other (see Tap).
       for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
         const Tap& tap = taps_[t];
-        g.tapTerms[tapAt[tap.a]++] = {tap.b, tap.intoA};
-        g.tapTerms[tapAt[tap.b]++] = {tap.a, tap.intoB};
+        g.tapTerms[tapAt[tap.a]++] = {tap.fromB, tap.intoA};
+        g.tapTerms[tapAt[tap.b]++] = {tap.fromA, tap.intoB};
       }
     }
     // Cluster links: each clear sample from the element it left to the patch it reached.

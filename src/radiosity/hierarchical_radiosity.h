@@ -80,7 +80,8 @@ struct RadiosityOptions {
   /// Refinement stops making links once this many exist (links kept plus links waiting to be
   /// examined): links still over the BF threshold are then kept as they are, the run reports
   /// `linkBudgetReached` and is not converged. A guard against runs that would outgrow memory
-  /// (~100-200 bytes per link with its taps; 20 M links: a few GB).
+  /// (~100-200 bytes per link with its taps; 20 M links: a few GB). A link between clusters
+  /// counts an eighth of one.
   size_t maxLinks = 20'000'000;
   /// Clustering (patch_clusters.h, cluster_links.h): far groups of patches exchange light through
   /// one sampled link while a bound of what it carries stays under the BF threshold, so links

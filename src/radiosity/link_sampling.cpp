@@ -1,6 +1,8 @@
 // Sampled link visibility (HSA91 §3 jittered rays, kernel-weighted). See link_sampling.h.
 #include "radiosity/link_sampling.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "radiosity/form_factor.h"
@@ -27,6 +29,17 @@ std::optional<SampledVisibility> sampleLinkVisibility(
     }
   }
   v.samples = from.size();
+  // Only a link both blocked and clear can owe its light to a crack (a wall with a crack in it);
+  // testing every clear sample would double the rays of the links in plain view.
+  if (v.clear > 0 && v.clear < v.samples) {
+    std::erase_if(v.clearSamples, [&](const ClearSample& c) {
+      if (!throughCrack(c.from, c.to, tol, blocked)) return false;
+      --v.clear;
+      weightClear -= c.weight;
+      return true;
+    });
+    weightClear = std::max(0.0, weightClear);
+  }
   if (weightAll > 0) {
     v.fraction = weightClear / weightAll;
     for (ClearSample& c : v.clearSamples) c.weight /= weightAll;
@@ -36,6 +49,21 @@ std::optional<SampledVisibility> sampleLinkVisibility(
     for (ClearSample& c : v.clearSamples) c.weight = 1.0 / static_cast<double>(v.samples);
   }
   return v;
+}
+
+bool throughCrack(const Vec3& from, const Vec3& to, const Tolerance& tol,
+                  const std::function<bool(const Vec3& from, const Vec3& to)>& blocked) {
+  const Vec3 d = to - from;
+  const double len = length(d);
+  if (!(len > 0)) return false;
+  const Vec3 axis = d * (1.0 / len);
+  // Two unit directions perpendicular to the segment and to each other: a crack narrower than
+  // the shift is left by at least one of them (each has a component across it of ≥ shift / √2).
+  const Vec3 helper = std::abs(axis.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  const Vec3 u = normalize(cross(axis, helper));
+  const Vec3 w = cross(axis, u);
+  const double shift = kCrackWidthInModelTolerances * tol.planeOffset();
+  return blocked(from + u * shift, to + u * shift) || blocked(from + w * shift, to + w * shift);
 }
 
 VisibilityEstimate estimateFromSamples(SampledVisibility&& sampled) {

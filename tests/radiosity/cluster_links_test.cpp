@@ -78,8 +78,8 @@ TEST(ClusterLinkTest, SampledTransferMatchesTheExactFormFactor) {
   const auto [lower, upper] = squares(tree);
   ASSERT_EQ(tree[lower].size(), 4u);
   ASSERT_EQ(tree[upper].size(), 4u);
-  const ClusterSampling got =
-      sampleClusterLink(tree, elements, candidates, open, lower, upper, 4000, 7);
+  const ClusterSampling got = sampleClusterLink(tree, elements, candidates, open,
+                                                s.scene.tolerance(), lower, upper, 4000, 7);
   // Per receiving patch: Σ coefficient = its form factor to the other square (B = 1 there).
   std::vector<double> into(s.scene.patches.size(), 0.0);
   for (const ClusterTap& t : got.taps) {
@@ -96,7 +96,8 @@ TEST(ClusterLinkTest, SampledTransferMatchesTheExactFormFactor) {
   // error is ~0.1 %; 1 % is ten of them (a bound, not today's error).
   EXPECT_NEAR(lowerToUpper, exact, 0.01 * exact);
   EXPECT_NEAR(upperToLower, exact, 0.01 * exact);
-  EXPECT_EQ(got.rays, 4000u * 8u);              // every sample faces: one ray each
+  // Every sample faces and is clear: one ray, then two for the crack test.
+  EXPECT_EQ(got.rays, 3u * 4000u * 8u);
   EXPECT_NEAR(howellC11(1, 1), 0.19982, 1e-5);  // the formula itself, against the catalogue
 }
 
@@ -107,13 +108,15 @@ TEST(ClusterLinkTest, BlockedSegmentsAndUnlistedPairsCarryNothing) {
   const auto [lower, upper] = squares(tree);
   FixedOracle blocked(true, true);
   const CandidatePairs all(blocked, s.scene.patches.size());
-  const ClusterSampling b = sampleClusterLink(tree, elements, all, blocked, lower, upper, 8, 1);
+  const ClusterSampling b =
+      sampleClusterLink(tree, elements, all, blocked, s.scene.tolerance(), lower, upper, 8, 1);
   EXPECT_TRUE(b.taps.empty());
   EXPECT_EQ(b.rays, 8u * 8u);
   FixedOracle none(false, false);  // lists no pair (forEachCandidatePair visits nothing)
   const CandidatePairs listed(none, s.scene.patches.size());
   EXPECT_EQ(listed.count(), 0u);
-  const ClusterSampling n = sampleClusterLink(tree, elements, listed, none, lower, upper, 8, 1);
+  const ClusterSampling n =
+      sampleClusterLink(tree, elements, listed, none, s.scene.tolerance(), lower, upper, 8, 1);
   EXPECT_TRUE(n.taps.empty());
   EXPECT_EQ(n.rays, 0u);
 }
@@ -129,8 +132,8 @@ TEST(ClusterLinkTest, FacesTurnedAwayReceiveNothing) {
   const ElementTree elements(scene);
   FixedOracle open(true, false);
   const CandidatePairs candidates(open, 2);
-  const ClusterSampling got =
-      sampleClusterLink(tree, elements, candidates, open, tree[0].left, tree[0].right, 64, 3);
+  const ClusterSampling got = sampleClusterLink(tree, elements, candidates, open, scene.tolerance(),
+                                                tree[0].left, tree[0].right, 64, 3);
   EXPECT_TRUE(got.taps.empty());
   EXPECT_EQ(got.rays, 0u);
 }
