@@ -37,24 +37,25 @@ Poly2 convexHull(std::vector<P2> pts) {
 }
 
 /// Twice the area over the longest edge: below `eps` the piece is thinner than the tolerance.
+/// (Compared squared: this runs for every piece of every subtraction.)
 bool thin(const Poly2& p, double eps) {
   if (p.size() < 3) return true;
-  double area2 = 0, longest = 0;
+  double area2 = 0, longest2 = 0;
   for (size_t i = 0; i < p.size(); ++i) {
     const P2& a = p[i];
     const P2& b = p[(i + 1) % p.size()];
     area2 += a.x * b.y - a.y * b.x;
-    longest = std::max(longest, std::hypot(b.x - a.x, b.y - a.y));
+    longest2 = std::max(longest2, (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y));
   }
-  return !(std::abs(area2) > eps * longest);
+  return !(area2 * area2 > eps * eps * longest2);
 }
 
 /// The part of convex `in` where the signed distance to the directed line a → b (positive on
-/// its left) is >= 0 when `left`, <= 0 otherwise.
+/// its left) is >= 0 when `left`, <= 0 otherwise. (The distance unnormalized: only its sign and
+/// ratios are used.)
 Poly2 clipHalfplane(const Poly2& in, const P2& a, const P2& b, bool left) {
-  const double len = std::hypot(b.x - a.x, b.y - a.y);
   auto dist = [&](const P2& p) {
-    const double d = cross2(a, b, p) / len;
+    const double d = cross2(a, b, p);
     return left ? d : -d;
   };
   Poly2 out;
@@ -101,13 +102,35 @@ bool coplanarBlockersCover(const Tube& tube, std::span<const BlockerGeometry* co
   const Poly2 hull = convexHull(crossings);
   if (hull.size() < 3) return false;
 
+  // Boxes first: real levels put dozens of coplanar pieces of one wall in a group, most of
+  // them nowhere near a given piece of the hull, and each subtraction multiplies the pieces.
+  struct Box2 {
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    void add(const P2& p) {
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
+      y1 = std::max(y1, p.y);
+    }
+    bool overlaps(const Box2& o, double e) const {
+      return x0 <= o.x1 + e && o.x0 <= x1 + e && y0 <= o.y1 + e && o.y0 <= y1 + e;
+    }
+  };
+  auto boxOf = [](const Poly2& p) {
+    Box2 b;
+    for (const P2& q : p) b.add(q);
+    return b;
+  };
   std::vector<Poly2> remaining{hull}, next;
   for (const BlockerGeometry* b : blockers) {
     Poly2 poly;
     for (const Vec3& v : b->vertices) poly.push_back(to2(v));
     if (dot(b->plane.normal, n) < 0) std::reverse(poly.begin(), poly.end());
+    const Box2 blockerBox = boxOf(poly);
     next.clear();
-    for (Poly2 piece : remaining) {
+    for (Poly2& piece : remaining) {
+      if (!boxOf(piece).overlaps(blockerBox, eps)) {
+        next.push_back(std::move(piece));  // wholly outside this blocker: kept as it is
+        continue;
+      }
       // Subtract the convex blocker: what lies right of each edge is outside it (kept); the rest
       // goes on to the next edge; what is left of every edge is inside (removed).
       for (size_t k = 0; k < poly.size() && !piece.empty(); ++k) {
