@@ -55,20 +55,35 @@ double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, 
 
 namespace {
 
+/// Whether any corner of `box` lies strictly in front of `plane`.
+bool inFront(const Plane& plane, const Aabb& box) {
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner{c & 1 ? box.hi.x : box.lo.x, c & 2 ? box.hi.y : box.lo.y,
+                      c & 4 ? box.hi.z : box.lo.z};
+    if (plane.distance(corner) > 0) return true;
+  }
+  return false;
+}
+
 /// The taps into the patches of `to` from cluster `from` (one direction of a link).
 void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
                 const CandidatePairs& candidates, const LinkVisibility& visibility,
                 const Tolerance& tol, uint32_t to, uint32_t from, int samplesPerPatch,
                 SplitMix64& rng, ClusterSampling& out) {
   const double sourceArea = clusters[from].area;
+  const Aabb& sourceBox = clusters[from].box;
   const double share = sourceArea / samplesPerPatch;
   for (const uint32_t p : clusters.patchesOf(to)) {
     const ConvexPolygon& receiver = elements[p].polygon;
+    // The source cluster's box wholly behind the receiver's plane: nothing to gather.
+    if (!inFront(receiver.plane, sourceBox)) continue;
     const std::vector<Vec3> points = stratifiedPoints(receiver.vertices, samplesPerPatch, rng);
     for (const Vec3& x : points) {
       const uint32_t q = clusters.patchByArea(from, rng.uniform());
       const ConvexPolygon& source = elements[q].polygon;
-      const Vec3 y = stratifiedPoints(source.vertices, 1, rng).front();
+      // Behind the source's plane: no point of it faces x (most picks in a large cluster).
+      if (!(source.plane.distance(x) > 0)) continue;
+      const Vec3 y = uniformPoint(source.vertices, rng);
       // cos θx cos θy / r², 0 when either faces away: no ray needed.
       const double kernel = kernelWeight(x, receiver.normal(), y, source.normal());
       if (!(kernel > 0)) continue;

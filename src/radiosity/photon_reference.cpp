@@ -19,26 +19,6 @@ double channelSum(const Rgb& c) {
   return c.r + c.g + c.b;
 }
 
-/// A uniform point of a convex polygon: a fan triangle by area, then a uniform point in it.
-Vec3 uniformPoint(const ConvexPolygon& p, SplitMix64& rng) {
-  const std::vector<Vec3>& v = p.vertices;
-  double total = 0;
-  for (size_t k = 1; k + 1 < v.size(); ++k) total += length(cross(v[k] - v[0], v[k + 1] - v[0]));
-  double pick = rng.uniform() * total;
-  size_t k = 1;
-  for (; k + 2 < v.size(); ++k) {
-    const double a = length(cross(v[k] - v[0], v[k + 1] - v[0]));
-    if (pick < a) break;
-    pick -= a;
-  }
-  double s = rng.uniform(), t = rng.uniform();
-  if (s + t > 1) {
-    s = 1 - s;
-    t = 1 - t;
-  }
-  return v[0] + (v[k] - v[0]) * s + (v[k + 1] - v[0]) * t;
-}
-
 /// A direction about unit normal `n` with density cos θ / π (Malley's method).
 Vec3 cosineDirection(const Vec3& n, SplitMix64& rng) {
   const Vec3 helper = std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
@@ -97,7 +77,7 @@ PhotonResult photonReference(const Scene& scene, const EmbreeScene& rays,
       // Power A E / (probability of this emitter) / photons: unbiased for the emitted power.
       const double scale = totalWeight / channelSum(e) / static_cast<double>(perBatch);
       Rgb power{e.r * scale, e.g * scale, e.b * scale};
-      Vec3 origin = uniformPoint(scene.patches[patch].polygon, rng);
+      Vec3 origin = uniformPoint(scene.patches[patch].polygon.vertices, rng);
       for (int bounce = 0; bounce < options.maxBounces; ++bounce) {
         const Vec3 dir = cosineDirection(scene.patches[patch].polygon.plane.normal, rng);
         ++batch.rays;

@@ -25,6 +25,24 @@ double kernelWeight(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny
   return cx * cy / (r2 * r2);
 }
 
+Vec3 uniformPoint(std::span<const Vec3> v, SplitMix64& rng) {
+  double total = 0;
+  for (size_t k = 1; k + 1 < v.size(); ++k) total += length(cross(v[k] - v[0], v[k + 1] - v[0]));
+  double pick = rng.uniform() * total;
+  size_t k = 1;
+  for (; k + 2 < v.size(); ++k) {
+    const double a = length(cross(v[k] - v[0], v[k + 1] - v[0]));
+    if (pick < a) break;
+    pick -= a;
+  }
+  double s = rng.uniform(), t = rng.uniform();
+  if (s + t > 1) {
+    s = 1 - s;
+    t = 1 - t;
+  }
+  return v[0] + (v[k] - v[0]) * s + (v[k + 1] - v[0]) * t;
+}
+
 std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng) {
   std::vector<Vec3> points;
   if (count <= 0 || vertices.size() < 3) return points;

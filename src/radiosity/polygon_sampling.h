@@ -38,6 +38,10 @@ uint64_t mixSeed(uint64_t a, uint64_t b, uint64_t c = 0);
 /// every polygon). The points are strictly inside the polygon with probability 1.
 std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, SplitMix64& rng);
 
+/// One uniform point of the convex polygon `vertices`: a fan triangle by area, then a uniform
+/// point in it. No allocation (the photon tracer and the cluster links call it per sample).
+Vec3 uniformPoint(std::span<const Vec3> vertices, SplitMix64& rng);
+
 /// The weight of a visibility sample between `x` on a surface with unit normal `nx` and `y` with
 /// unit normal `ny`: the form-factor kernel cos θx cos θy / r² (0 when either faces away). The
 /// visibility of a link is the kernel-weighted mean of the samples, Σ K V / Σ K, not the plain
