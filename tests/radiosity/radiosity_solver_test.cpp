@@ -77,18 +77,28 @@ TEST(RadiosityEmitterTest, ReceiverGetsRhoTimesEmissionTimesHowellFormFactor) {
   EXPECT_EQ(r.patchRadiosity[1], (Rgb{3, 2, 1}));  // non-reflecting: its emission only
 }
 
-TEST(RadiosityLightLeakTest, SealedNeighbourRoomStaysExactlyBlack) {
-  // Two 1 m rooms side by side along x with a 0.1 m solid wall between them (both of its faces
-  // are patches); a light panel under room A's ceiling only.
+/// Two 1 m rooms side by side along x with a 0.1 m solid wall between them (both of its faces
+/// are patches), each face in n x n pieces; a light panel under room A's ceiling only. Room A
+/// is patches [0, roomA), room B [roomA, roomB).
+struct SealedRooms {
   Scene scene;
-  const uint32_t white = scene.addMaterial({"white", {0.7, 0.7, 0.7}, {}});
-  const uint32_t light = scene.addMaterial({"light", {0.8, 0.8, 0.8}, {5, 5, 5}});
-  SceneBuilder builder(scene, Tolerance{3.0});
-  addInwardBox(builder, {0, 0, 0}, {1, 1, 1}, white, 1);
-  const size_t roomA = scene.patches.size();
-  addInwardBox(builder, {1.1, 0, 0}, {2.1, 1, 1}, white, 1);
-  const size_t roomB = scene.patches.size();
-  ASSERT_TRUE(builder.addAxisRect(2, false, {0.3, 0.3, 0.98}, {0.7, 0.7, 0.98}, light));
+  size_t roomA = 0, roomB = 0;
+  explicit SealedRooms(int n) {
+    const uint32_t white = scene.addMaterial({"white", {0.7, 0.7, 0.7}, {}});
+    const uint32_t light = scene.addMaterial({"light", {0.8, 0.8, 0.8}, {5, 5, 5}});
+    SceneBuilder builder(scene, Tolerance{3.0});
+    addInwardBox(builder, {0, 0, 0}, {1, 1, 1}, white, n);
+    roomA = scene.patches.size();
+    addInwardBox(builder, {1.1, 0, 0}, {2.1, 1, 1}, white, n);
+    roomB = scene.patches.size();
+    EXPECT_TRUE(builder.addAxisRect(2, false, {0.3, 0.3, 0.98}, {0.7, 0.7, 0.98}, light));
+  }
+};
+
+TEST(RadiosityLightLeakTest, SealedNeighbourRoomStaysExactlyBlack) {
+  const SealedRooms rooms(1);
+  const Scene& scene = rooms.scene;
+  const size_t roomA = rooms.roomA, roomB = rooms.roomB;
   RadiosityOptions options;
   options.epsilon = 2e-4;
   const RadiosityResult r = solveWithRays(scene, options);
@@ -204,15 +214,9 @@ TEST(RadiosityElementTest, DeepestContainingFindsThePieceUnderAPoint) {
 TEST(RadiosityClusterTest, SealedNeighbourRoomStaysExactlyBlackWithClusters) {
   // The two sealed rooms, their walls in 6 x 6 pieces, with clustering: the far pieces of the
   // two rooms exchange through cluster links, whose every sample crosses the solid wall.
-  Scene scene;
-  const uint32_t white = scene.addMaterial({"white", {0.7, 0.7, 0.7}, {}});
-  const uint32_t light = scene.addMaterial({"light", {0.8, 0.8, 0.8}, {5, 5, 5}});
-  SceneBuilder builder(scene, Tolerance{3.0});
-  addInwardBox(builder, {0, 0, 0}, {1, 1, 1}, white, 6);
-  const size_t roomA = scene.patches.size();
-  addInwardBox(builder, {1.1, 0, 0}, {2.1, 1, 1}, white, 6);
-  const size_t roomB = scene.patches.size();
-  ASSERT_TRUE(builder.addAxisRect(2, false, {0.3, 0.3, 0.98}, {0.7, 0.7, 0.98}, light));
+  const SealedRooms rooms(6);
+  const Scene& scene = rooms.scene;
+  const size_t roomA = rooms.roomA, roomB = rooms.roomB;
   RadiosityOptions options;
   options.epsilon = 2e-4;
   options.clusterSamples = 2;
