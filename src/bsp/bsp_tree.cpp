@@ -19,8 +19,7 @@ std::optional<ConvexPolygon> sectionOf(const ConvexPolyhedron& cell, const Plane
                                        const Tolerance& tol) {
   const Aabb box = cell.bounds();
   const Vec3& n = plane.normal;
-  const Vec3 u = normalize(cross(n, std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-  const Vec3 v = cross(n, u);
+  const auto [u, v] = perpendicularFrame(n);
   const Vec3 c = box.center() - n * plane.distance(box.center());
   const double h = box.diagonal();
   std::optional<ConvexPolygon> section = ConvexPolygon{

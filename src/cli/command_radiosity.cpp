@@ -133,8 +133,9 @@ Action addRadiosityCommand(CLI::App& app) {
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s, coverage, epsilon, relativeEpsilon, clusterSamples] {
     const auto start = Clock::now();
-    // The quality's settings, then an explicit --epsilon or --relative-epsilon over them (with
-    // the default quality's other settings): a "custom" quality.
+    // The quality's settings, then an explicit --epsilon, --relative-epsilon (with the default
+    // quality's other settings) or --cluster-samples (with the chosen quality's) over them: a
+    // "custom" quality.
     s->customQuality =
         epsilon->count() > 0 || relativeEpsilon->count() > 0 || clusterSamples->count() > 0;
     const RadiosityOptions given = s->options;

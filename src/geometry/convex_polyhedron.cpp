@@ -13,8 +13,8 @@ namespace {
 /// `near`, counter-clockwise seen from the plane's front.
 ConvexPolygon squareOn(const Plane& plane, const Vec3& near, double halfSize) {
   const Vec3& n = plane.normal;
-  const Vec3 u = normalize(cross(n, std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
-  const Vec3 v = cross(n, u);  // (u, v, n) right-handed, so u→v turns counter-clockwise about n
+  // (u, v, n) right-handed, so u→v turns counter-clockwise about n.
+  const auto [u, v] = perpendicularFrame(n);
   const Vec3 c = near - n * plane.distance(near);
   const Vec3 du = u * halfSize, dv = v * halfSize;
   return ConvexPolygon{{c - du - dv, c + du - dv, c + du + dv, c - du + dv}, plane};
@@ -103,7 +103,8 @@ std::optional<ConvexPolyhedron> ConvexPolyhedron::fromAabb(const Aabb& box) {
       std::vector<Vec3> v{corner(false, false), corner(true, false), corner(true, true),
                           corner(false, true)};
       if (s < 0) std::reverse(v.begin(), v.end());
-      p.faces.push_back({ConvexPolygon{std::move(v), plane}, static_cast<int>(p.halfspaces.size())});
+      p.faces.push_back(
+          {ConvexPolygon{std::move(v), plane}, static_cast<int>(p.halfspaces.size())});
       p.halfspaces.push_back(plane);
     }
   }
@@ -130,8 +131,8 @@ std::optional<ConvexPolyhedron> ConvexPolyhedron::fromHalfspaces(const std::vect
     ConvexPolyhedron p;
     p.halfspaces = unique;
     for (std::size_t i = 0; i < unique.size(); ++i) {
-      std::optional<ConvexPolygon> face = clipToHalfspaces(squareOn(unique[i], near, halfSize),
-                                                           unique, static_cast<int>(i), tol);
+      std::optional<ConvexPolygon> face =
+          clipToHalfspaces(squareOn(unique[i], near, halfSize), unique, static_cast<int>(i), tol);
       if (face) p.faces.push_back({std::move(*face), static_cast<int>(i)});
     }
     return p;

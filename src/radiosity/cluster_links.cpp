@@ -90,8 +90,8 @@ void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
       const std::optional<TubeId> tube = candidates.find(p, q);
       if (!tube) continue;
       ++out.rays;
-      auto blocked = [&](const Vec3& from, const Vec3& to) {
-        return visibility.segmentBlocked(p, from, q, to, *tube);
+      auto blocked = [&](const Vec3& start, const Vec3& end) {
+        return visibility.segmentBlocked(p, start, q, end, *tube);
       };
       if (blocked(x, y)) continue;
       // A single clear sample carries the whole tap: one through a crack is a leak.

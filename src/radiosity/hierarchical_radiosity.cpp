@@ -169,10 +169,9 @@ class Solver {
       candidates_.emplace(visibility_, scene_.patches.size());
       stats_.candidatePairs = candidates_->count();
       std::vector<LinkJob> jobs;
+      updateClusterBrightness();
       refineClusters({{0, 0}}, jobs);
-      for (size_t i = 0; i < jobs.size(); i += kBatch)
-        stats_.facingPairs += makeLinks(
-            std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), links_, nullptr);
+      stats_.facingPairs += makeLinksInBatches(jobs, links_);
       return;
     }
     std::vector<LinkJob> jobs;
@@ -270,6 +269,15 @@ class Solver {
       out.push_back(link);
       if (roots) roots->push_back(jobs[asked[k]].root);
     }
+    return facing;
+  }
+
+  /// makeLinks on `jobs` kBatch at a time (each step's clear samples stay a few MB); returns how
+  /// many could face.
+  size_t makeLinksInBatches(std::span<const LinkJob> jobs, std::vector<Link>& out) {
+    size_t facing = 0;
+    for (size_t i = 0; i < jobs.size(); i += kBatch)
+      facing += makeLinks(jobs.subspan(i, std::min(kBatch, jobs.size() - i)), out, nullptr);
     return facing;
   }
 
@@ -427,17 +435,14 @@ class Solver {
         compactClusterTaps();
         std::vector<LinkJob> jobs;
         refineClusters(std::move(split), jobs);
-        for (size_t i = 0; i < jobs.size(); i += kBatch)
-          makeLinks(std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), pending,
-                    nullptr);
+        makeLinksInBatches(jobs, pending);
       }
     }
     refinePending(pending, round, true);
     std::vector<LinkJob> jobs;
     while (!stats_.linkBudgetReached && pushInconsistentLinks(jobs, round)) {
       pending.clear();
-      for (size_t i = 0; i < jobs.size(); i += kBatch)
-        makeLinks(std::span(jobs).subspan(i, std::min(kBatch, jobs.size() - i)), pending, nullptr);
+      makeLinksInBatches(jobs, pending);
       jobs.clear();
       refinePending(pending, round, false);
     }
@@ -458,11 +463,11 @@ class Solver {
   /// children): a pair whose bound is under the threshold becomes a cluster link; a pair of two
   /// patches over it becomes a job for an ordinary link (if the oracle lists the pair); any other
   /// pair is split at the cluster with the larger box. Sequential (bounds only, cheap); the new
-  /// links' samples are then taken in parallel and kept in order.
+  /// links' samples are then taken in parallel and kept in order. clusterBright_ must be
+  /// current (updateClusterBrightness).
   void refineClusters(std::vector<std::pair<uint32_t, uint32_t>> stack,
                       std::vector<LinkJob>& jobs) {
     const ClusterTree& tree = *clusters_;
-    updateClusterBrightness();
     std::vector<ClusterLink> made;
     while (!stack.empty()) {
       const auto [x, y] = stack.back();

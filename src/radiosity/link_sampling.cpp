@@ -59,9 +59,7 @@ bool throughCrack(const Vec3& from, const Vec3& to, const Tolerance& tol,
   const Vec3 axis = d * (1.0 / len);
   // Two unit directions perpendicular to the segment and to each other: a crack narrower than
   // the shift is left by at least one of them (each has a component across it of ≥ shift / √2).
-  const Vec3 helper = std::abs(axis.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  const Vec3 u = normalize(cross(axis, helper));
-  const Vec3 w = cross(axis, u);
+  const auto [u, w] = perpendicularFrame(axis);
   const double shift = kCrackWidthInModelTolerances * tol.planeOffset();
   return blocked(from + u * shift, to + u * shift) || blocked(from + w * shift, to + w * shift);
 }

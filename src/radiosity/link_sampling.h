@@ -25,7 +25,8 @@ struct SampledVisibility {
 /// with a random permutation of `a`'s so that the segments do not all run parallel, each decided
 /// by `blocked(from, to)` and weighted by the form-factor kernel (kernelWeight). When some are
 /// blocked and some clear, the clear ones are tested for cracks (throughCrack) and count as
-/// blocked if they pass through one. nullopt when the two exchange no light at all.
+/// blocked if they pass through one (those extra segments are not in `samples`, which is the N
+/// of the sampling uncertainty). nullopt when the two exchange no light at all.
 std::optional<SampledVisibility> sampleLinkVisibility(
     const ConvexPolygon& a, const ConvexPolygon& b, int count, const Tolerance& tol,
     SplitMix64& rng, const std::function<bool(const Vec3& from, const Vec3& to)>& blocked);

@@ -21,9 +21,7 @@ double channelSum(const Rgb& c) {
 
 /// A direction about unit normal `n` with density cos θ / π (Malley's method).
 Vec3 cosineDirection(const Vec3& n, SplitMix64& rng) {
-  const Vec3 helper = std::abs(n.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  const Vec3 u = normalize(cross(n, helper));
-  const Vec3 w = cross(n, u);
+  const auto [u, w] = perpendicularFrame(n);
   const double r2 = rng.uniform(), phi = 2 * std::numbers::pi * rng.uniform();
   const double r = std::sqrt(r2);
   return u * (r * std::cos(phi)) + w * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r2));

@@ -49,9 +49,7 @@ std::optional<Segment> lineAlongDirection(std::span<const std::span<const Vec3>>
   if (loops.empty() || !(dl > 0) || loops[0].empty()) return std::nullopt;
   const Vec3 w = d / dl;
   // An orthonormal frame (u, v) of the plane perpendicular to w.
-  const Vec3 helper = std::abs(w.x) < 0.6 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  const Vec3 u = normalize(cross(w, helper));
-  const Vec3 v = cross(w, u);
+  const auto [u, v] = perpendicularFrame(w);
   Vec3 origin{};
   for (const Vec3& p : loops[0]) origin += p;
   origin = origin / static_cast<double>(loops[0].size());

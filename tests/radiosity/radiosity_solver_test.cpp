@@ -13,6 +13,7 @@
 #include "radiosity/furnace_scene.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/polygon_sampling.h"
+#include "radiosity/radiosity_quality.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
 
@@ -234,9 +235,8 @@ TEST(RadiosityClusterTest, AgreesWithLinksBetweenEveryPairInAFurnishedRoom) {
   // those pairs carry, not by the whole of it. Fewer links with clusters.
   const Scene scene = generateFurnishedRoom();
   RadiosityOptions options;
-  options.epsilon = 1e-4;
-  options.relativeEpsilon = 0.05;
-  options.formFactor.relativeTolerance = 1e-2;
+  applyRadiosityQuality(RadiosityQuality::Medium, options);
+  options.clusterSamples = 0;
   const RadiosityResult every = solveWithRays(scene, options);
   options.clusterSamples = 2;
   const RadiosityResult clustered = solveWithRays(scene, options);
