@@ -239,9 +239,14 @@ Action addRadiosityCommand(CLI::App& app) {
     const size_t elements = st.rounds.empty() ? 0 : st.rounds.back().elements;
     fmt::print("patches {}  links {}  elements {}  interactions {}  rays {}\n", st.patches, links,
                elements, st.interactions, st.rays);
-    if (st.clustered && !st.rounds.empty())
-      fmt::print("clusters: {} links between clusters of patches, {} clear samples\n",
-                 st.rounds.back().clusterLinks, st.rounds.back().clusterTaps);
+    if (st.clustered && !st.rounds.empty()) {
+      size_t invisible = 0;
+      for (const RefinementStats& r : st.rounds) invisible += r.clusterPairsInvisible;
+      fmt::print(
+          "clusters: {} links between clusters of patches, {} clear samples; {} cluster pairs "
+          "dropped with no candidate pair between them\n",
+          st.rounds.back().clusterLinks, st.rounds.back().clusterTaps, invisible);
+    }
     if (scene.report.splitAtContacts > 0)
       fmt::print("contact split: {} patches cut along the patches resting on them into {} pieces\n",
                  scene.report.splitAtContacts, scene.report.contactPieces);

@@ -10,34 +10,61 @@
 
 namespace gv {
 
-CandidatePairs::CandidatePairs(LinkVisibility& visibility, size_t patches) {
+CandidatePairs::CandidatePairs(LinkVisibility& visibility, const ClusterTree& clusters) {
+  const size_t n = clusters.order().size();
   if (visibility.everyPairIsCandidate()) {
     every_ = true;
-    count_ = patches < 2 ? 0 : patches * (patches - 1) / 2;
+    count_ = n < 2 ? 0 : n * (n - 1) / 2;
     return;
   }
-  std::vector<std::pair<uint64_t, TubeId>> pairs;
+  position_.assign(n, 0);
+  for (size_t i = 0; i < n; ++i) position_[clusters.order()[i]] = static_cast<uint32_t>(i);
+  struct Pair {
+    uint32_t a, b;
+    TubeId tube;
+  };
+  std::vector<Pair> pairs;
   visibility.forEachCandidatePair([&](uint32_t a, uint32_t b, TubeId tube) {
-    if (a > b) std::swap(a, b);
-    pairs.emplace_back(uint64_t{a} << 32 | b, tube);
+    pairs.push_back({position_[a], position_[b], tube});
   });
-  std::sort(pairs.begin(), pairs.end());
-  keys_.reserve(pairs.size());
-  tubes_.reserve(pairs.size());
-  for (const auto& [key, tube] : pairs) {
-    keys_.push_back(key);
-    tubes_.push_back(tube);
+  count_ = pairs.size();
+  rowBegin_.assign(n + 1, 0);
+  for (const Pair& p : pairs) {
+    ++rowBegin_[p.a + 1];
+    ++rowBegin_[p.b + 1];
   }
-  count_ = keys_.size();
+  for (size_t i = 0; i < n; ++i) rowBegin_[i + 1] += rowBegin_[i];
+  entries_.resize(rowBegin_[n]);
+  std::vector<size_t> next(rowBegin_.begin(), rowBegin_.end() - 1);
+  for (const Pair& p : pairs) {
+    entries_[next[p.a]++] = uint64_t{p.b} << 32 | p.tube;
+    entries_[next[p.b]++] = uint64_t{p.a} << 32 | p.tube;
+  }
+  pairs = {};
+  for (size_t i = 0; i < n; ++i)
+    std::sort(entries_.begin() + static_cast<long>(rowBegin_[i]),
+              entries_.begin() + static_cast<long>(rowBegin_[i + 1]));
 }
 
 std::optional<TubeId> CandidatePairs::find(uint32_t a, uint32_t b) const {
   if (every_) return kNoTube;
-  if (a > b) std::swap(a, b);
-  const uint64_t key = uint64_t{a} << 32 | b;
-  const auto it = std::lower_bound(keys_.begin(), keys_.end(), key);
-  if (it == keys_.end() || *it != key) return std::nullopt;
-  return tubes_[static_cast<size_t>(it - keys_.begin())];
+  const uint32_t pa = position_[a], pb = position_[b];
+  const std::span<const uint64_t> r = row(pa);
+  const auto it = std::lower_bound(r.begin(), r.end(), uint64_t{pb} << 32);
+  if (it == r.end() || (*it >> 32) != pb) return std::nullopt;
+  return static_cast<TubeId>(*it & 0xffffffffu);
+}
+
+bool CandidatePairs::anyBetween(const Cluster& x, const Cluster& y) const {
+  if (every_) return true;
+  const Cluster& small = x.size() <= y.size() ? x : y;
+  const Cluster& large = x.size() <= y.size() ? y : x;
+  for (uint32_t i = small.begin; i < small.end; ++i) {
+    const std::span<const uint64_t> r = row(i);
+    const auto it = std::lower_bound(r.begin(), r.end(), uint64_t{large.begin} << 32);
+    if (it != r.end() && (*it >> 32) < large.end) return true;
+  }
+  return false;
 }
 
 double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, double brightY) {

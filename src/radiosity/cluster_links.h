@@ -37,20 +37,33 @@ struct ClusterTap {
   float coefficient = 0;
 };
 
-/// The oracle's candidate pairs, looked up by pair (every pair when the oracle says so).
+/// The oracle's candidate pairs, looked up by pair or by pair of clusters (every pair when the
+/// oracle says so). Kept as a row per patch, in the cluster tree's order, of its partners' tree
+/// positions: a cluster is a range of positions, so whether two clusters hold a candidate pair
+/// is a binary search per patch of the smaller one.
 class CandidatePairs {
  public:
-  explicit CandidatePairs(LinkVisibility& visibility, size_t patches);
+  CandidatePairs(LinkVisibility& visibility, const ClusterTree& clusters);
   /// The pair's tube, or nullopt when (a, b) is not a candidate (no light passes). a != b.
   std::optional<TubeId> find(uint32_t a, uint32_t b) const;
+  /// Whether any patch of x and any patch of y form a candidate pair. None: the oracle proved
+  /// every pair between them invisible (the visibility graph lists none), so no light passes
+  /// between the two clusters. x and y disjoint.
+  bool anyBetween(const Cluster& x, const Cluster& y) const;
   /// How many pairs are candidates.
   size_t count() const { return count_; }
 
  private:
+  /// The entries of the row at tree position `row`: partner position << 32 | tube, sorted.
+  std::span<const uint64_t> row(uint32_t row) const {
+    return std::span(entries_).subspan(rowBegin_[row], rowBegin_[row + 1] - rowBegin_[row]);
+  }
+
   bool every_ = false;
   size_t count_ = 0;
-  std::vector<uint64_t> keys_;  ///< a << 32 | b, a < b, sorted
-  std::vector<TubeId> tubes_;
+  std::vector<uint32_t> position_;  ///< per patch: its position in the tree's order
+  std::vector<size_t> rowBegin_;    ///< per position (n + 1): its row's start in entries_
+  std::vector<uint64_t> entries_;   ///< both directions of every pair
 };
 
 /// Clusters are linked only when the form factor from any point of one to the other is at most

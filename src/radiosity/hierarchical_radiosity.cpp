@@ -166,7 +166,7 @@ class Solver {
   /// The candidate pairs, a batch at a time (rays mode proposes every pair of patches).
   void makeInitialLinks() {
     if (clusters_) {
-      candidates_.emplace(visibility_, scene_.patches.size());
+      candidates_.emplace(visibility_, *clusters_);
       stats_.candidatePairs = candidates_->count();
       std::vector<LinkJob> jobs;
       updateClusterBrightness();
@@ -480,6 +480,12 @@ class Solver {
           stack.emplace_back(cx.right, cx.right);
           stack.emplace_back(cx.left, cx.right);
         }
+        continue;
+      }
+      // No candidate pair between them: the oracle proved every pair invisible (in `blockers`,
+      // the visibility graph lists none), so the two exchange nothing, at any level below.
+      if (!candidates_->anyBetween(cx, cy)) {
+        ++current_->clusterPairsInvisible;
         continue;
       }
       if (links_.size() + jobs.size() + (clusterLinks_.size() + made.size()) / kClusterLinkShare >=

@@ -118,7 +118,9 @@ struct RefinementStats {
   double refineSeconds = 0;
   size_t clusterLinks = 0;  ///< cluster links alive after the round (clustering only)
   size_t clusterTaps = 0;   ///< their clear samples
-  int sweeps = 0;           ///< Jacobi sweeps of the solve that followed
+  /// Cluster pairs dropped this round because the oracle lists no candidate pair between them.
+  size_t clusterPairsInvisible = 0;
+  int sweeps = 0;  ///< Jacobi sweeps of the solve that followed
   double solveSeconds = 0;
 };
 

@@ -74,6 +74,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
                       {"links_refined", r.linksRefined},
                       {"cluster_links", r.clusterLinks},
                       {"cluster_taps", r.clusterTaps},
+                      {"cluster_pairs_invisible", r.clusterPairsInvisible},
                       {"elements", r.elements},
                       {"leaves", r.leaves},
                       {"interactions", r.interactions},

@@ -147,6 +147,17 @@ TEST(BlockerVisibilityTest, SealedNeighbourRoomStaysExactlyBlack) {
   // The box makes PARTIAL links, some of whose children are INVISIBLE.
   EXPECT_GT(vis.stats().total().partial, 0u);
   EXPECT_GT(vis.stats().total().invisible, 0u);
+  // Clustered: the graph lists no pair across the wall, so cluster pairs of the two rooms are
+  // dropped whole (the visibility graph decides them) rather than split down to patch pairs.
+  BlockerVisibility again(scene, graph, 16);
+  options.clusterSamples = 2;
+  const RadiosityResult c = solveRadiosity(scene, again, options);
+  ASSERT_TRUE(c.stats.clustered);
+  size_t dropped = 0;
+  for (const RefinementStats& round : c.stats.rounds) dropped += round.clusterPairsInvisible;
+  EXPECT_GT(dropped, 0u);
+  for (size_t p = 0; p < roomA; ++p) EXPECT_GT(luminance(c.patchRadiosity[p]), 0.01) << p;
+  for (size_t p = roomA; p < roomB; ++p) EXPECT_EQ(c.patchRadiosity[p], Rgb{}) << p;
 }
 
 TEST(BlockerVisibilityTest, CornellBoxAgreesWithRaysModeAtManyRays) {

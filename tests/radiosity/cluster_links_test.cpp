@@ -44,6 +44,25 @@ class FixedOracle final : public LinkVisibility {
   bool pairs_, blocked_;
 };
 
+/// An oracle that lists the given pairs, each with its index as its tube.
+class ListOracle final : public LinkVisibility {
+ public:
+  explicit ListOracle(std::vector<std::pair<uint32_t, uint32_t>> pairs)
+      : pairs_(std::move(pairs)) {}
+  std::string_view name() const override { return "list"; }
+  void forEachCandidatePair(const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override {
+    for (size_t i = 0; i < pairs_.size(); ++i)
+      visit(pairs_[i].first, pairs_[i].second, static_cast<TubeId>(i));
+  }
+  VisibilityEstimate estimate(const Element&, const Element&, TubeId, uint64_t) override {
+    return {};
+  }
+  bool answersSegments() const override { return true; }
+
+ private:
+  std::vector<std::pair<uint32_t, uint32_t>> pairs_;
+};
+
 /// A unit square at z = 0 facing up in four equal pieces, and one at z = c facing down in four
 /// unequal ones (a half, a quarter, two eighths: the area-proportional pick matters).
 struct OpposedSquares {
@@ -74,7 +93,7 @@ TEST(ClusterLinkTest, SampledTransferMatchesTheExactFormFactor) {
   const ClusterTree tree(s.scene);
   const ElementTree elements(s.scene);
   FixedOracle open(true, false);
-  const CandidatePairs candidates(open, s.scene.patches.size());
+  const CandidatePairs candidates(open, tree);
   const auto [lower, upper] = squares(tree);
   ASSERT_EQ(tree[lower].size(), 4u);
   ASSERT_EQ(tree[upper].size(), 4u);
@@ -107,18 +126,58 @@ TEST(ClusterLinkTest, BlockedSegmentsAndUnlistedPairsCarryNothing) {
   const ElementTree elements(s.scene);
   const auto [lower, upper] = squares(tree);
   FixedOracle blocked(true, true);
-  const CandidatePairs all(blocked, s.scene.patches.size());
+  const CandidatePairs all(blocked, tree);
   const ClusterSampling b =
       sampleClusterLink(tree, elements, all, blocked, s.scene.tolerance(), lower, upper, 8, 1);
   EXPECT_TRUE(b.taps.empty());
   EXPECT_EQ(b.rays, 8u * 8u);
   FixedOracle none(false, false);  // lists no pair (forEachCandidatePair visits nothing)
-  const CandidatePairs listed(none, s.scene.patches.size());
+  const CandidatePairs listed(none, tree);
   EXPECT_EQ(listed.count(), 0u);
   const ClusterSampling n =
       sampleClusterLink(tree, elements, listed, none, s.scene.tolerance(), lower, upper, 8, 1);
   EXPECT_TRUE(n.taps.empty());
   EXPECT_EQ(n.rays, 0u);
+}
+
+TEST(ClusterLinkTest, CandidateLookupsAgreeWithTheListByBruteForce) {
+  // A few listed pairs among the 8 patches; every pair of disjoint clusters of the tree is then
+  // checked against a scan of the list, and every pair of patches against the list's tubes.
+  OpposedSquares s(3);
+  const ClusterTree tree(s.scene);
+  const std::vector<std::pair<uint32_t, uint32_t>> listed = {{0, 5}, {6, 1}, {2, 3}, {7, 4}};
+  ListOracle oracle(listed);
+  const CandidatePairs candidates(oracle, tree);
+  EXPECT_EQ(candidates.count(), listed.size());
+  for (uint32_t a = 0; a < 8; ++a)
+    for (uint32_t b = 0; b < 8; ++b) {
+      if (a == b) continue;
+      std::optional<TubeId> expected;
+      for (size_t i = 0; i < listed.size(); ++i)
+        if ((listed[i].first == a && listed[i].second == b) ||
+            (listed[i].first == b && listed[i].second == a))
+          expected = static_cast<TubeId>(i);
+      EXPECT_EQ(candidates.find(a, b), expected) << a << " " << b;
+    }
+  size_t checked = 0, without = 0;
+  for (uint32_t x = 0; x < tree.size(); ++x)
+    for (uint32_t y = 0; y < tree.size(); ++y) {
+      const Cluster& cx = tree[x];
+      const Cluster& cy = tree[y];
+      if (cx.begin < cy.end && cy.begin < cx.end) continue;  // nested or the same
+      bool any = false;
+      for (const uint32_t p : tree.patchesOf(x))
+        for (const uint32_t q : tree.patchesOf(y))
+          for (const auto& [a, b] : listed) any = any || (a == p && b == q) || (a == q && b == p);
+      EXPECT_EQ(candidates.anyBetween(cx, cy), any) << x << " " << y;
+      ++checked;
+      without += any ? 0 : 1;
+    }
+  // The construction has both answers, at every level (the two squares: 3 pairs between them).
+  EXPECT_GT(checked, 100u);
+  EXPECT_GT(without, 20u);
+  const auto [lower, upper] = squares(tree);
+  EXPECT_TRUE(candidates.anyBetween(tree[lower], tree[upper]));
 }
 
 TEST(ClusterLinkTest, FacesTurnedAwayReceiveNothing) {
@@ -131,7 +190,7 @@ TEST(ClusterLinkTest, FacesTurnedAwayReceiveNothing) {
   const ClusterTree tree(scene);
   const ElementTree elements(scene);
   FixedOracle open(true, false);
-  const CandidatePairs candidates(open, 2);
+  const CandidatePairs candidates(open, tree);
   const ClusterSampling got = sampleClusterLink(tree, elements, candidates, open, scene.tolerance(),
                                                 tree[0].left, tree[0].right, 64, 3);
   EXPECT_TRUE(got.taps.empty());
