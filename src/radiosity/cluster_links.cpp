@@ -80,6 +80,38 @@ double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, 
   return std::max(intoX, intoY);
 }
 
+SourcePicker::SourcePicker(const ClusterTree& clusters, std::span<const double> brightness)
+    : clusters_(clusters) {
+  const std::span<const double> areaBefore = clusters.areaBefore();
+  const std::span<const uint32_t> order = clusters.order();
+  powerBefore_.assign(order.size() + 1, 0.0);
+  for (size_t i = 0; i < order.size(); ++i)
+    powerBefore_[i + 1] =
+        powerBefore_[i] + (areaBefore[i + 1] - areaBefore[i]) * brightness[order[i]];
+}
+
+SourcePicker::Pick SourcePicker::pick(uint32_t cluster, double u) const {
+  const Cluster& c = clusters_[cluster];
+  const std::span<const double> areaBefore = clusters_.areaBefore();
+  const double power = powerBefore_[c.end] - powerBefore_[c.begin];
+  uint32_t at = 0;
+  if (!(power > 0)) {
+    at = positionByWeight(areaBefore, c.begin, c.end, u);
+  } else if (u < 0.5) {
+    at = positionByWeight(areaBefore, c.begin, c.end, 2 * u);
+  } else {
+    at = positionByWeight(powerBefore_, c.begin, c.end, 2 * u - 1);
+  }
+  const double area = areaBefore[at + 1] - areaBefore[at];
+  // P(q) = ½ A_q / A_X + ½ A_q b_q / P_X (or A_q / A_X without power); weight = A_q / P(q).
+  double weight = c.area;
+  if (power > 0) {
+    const double brightness = area > 0 ? (powerBefore_[at + 1] - powerBefore_[at]) / area : 0;
+    weight = 1 / (0.5 / c.area + 0.5 * brightness / power);
+  }
+  return {clusters_.order()[at], weight};
+}
+
 namespace {
 
 /// Whether any corner of `box` lies strictly in front of `plane`.
@@ -93,20 +125,19 @@ bool inFront(const Plane& plane, const Aabb& box) {
 }
 
 /// The taps into the patches of `to` from cluster `from` (one direction of a link).
-void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
-                const CandidatePairs& candidates, const LinkVisibility& visibility,
-                const Tolerance& tol, uint32_t to, uint32_t from, int samplesPerPatch,
-                SplitMix64& rng, ClusterSampling& out) {
-  const double sourceArea = clusters[from].area;
+void sampleInto(const ClusterTree& clusters, const SourcePicker& sources,
+                const ElementTree& elements, const CandidatePairs& candidates,
+                const LinkVisibility& visibility, const Tolerance& tol, uint32_t to, uint32_t from,
+                int samplesPerPatch, SplitMix64& rng, ClusterSampling& out) {
   const Aabb& sourceBox = clusters[from].box;
-  const double share = sourceArea / samplesPerPatch;
   for (const uint32_t p : clusters.patchesOf(to)) {
     const ConvexPolygon& receiver = elements[p].polygon;
     // The source cluster's box wholly behind the receiver's plane: nothing to gather.
     if (!inFront(receiver.plane, sourceBox)) continue;
     const std::vector<Vec3> points = stratifiedPoints(receiver.vertices, samplesPerPatch, rng);
     for (const Vec3& x : points) {
-      const uint32_t q = clusters.patchByArea(from, rng.uniform());
+      const SourcePicker::Pick picked = sources.pick(from, rng.uniform());
+      const uint32_t q = picked.patch;
       const ConvexPolygon& source = elements[q].polygon;
       // Behind the source's plane: no point of it faces x (most picks in a large cluster).
       if (!(source.plane.distance(x) > 0)) continue;
@@ -124,22 +155,25 @@ void sampleInto(const ClusterTree& clusters, const ElementTree& elements,
       // A single clear sample carries the whole tap: one through a crack is a leak.
       out.rays += 2;
       if (throughCrack(x, y, tol, blocked)) continue;
-      out.taps.push_back({p, elements.deepestContaining(q, y),
-                          static_cast<float>(share * kernel / std::numbers::pi)});
+      out.taps.push_back(
+          {p, elements.deepestContaining(q, y),
+           static_cast<float>(picked.weight / samplesPerPatch * kernel / std::numbers::pi)});
     }
   }
 }
 
 }  // namespace
 
-ClusterSampling sampleClusterLink(const ClusterTree& clusters, const ElementTree& elements,
-                                  const CandidatePairs& candidates,
+ClusterSampling sampleClusterLink(const ClusterTree& clusters, const SourcePicker& sources,
+                                  const ElementTree& elements, const CandidatePairs& candidates,
                                   const LinkVisibility& visibility, const Tolerance& tol,
                                   uint32_t x, uint32_t y, int samplesPerPatch, uint64_t seed) {
   ClusterSampling out;
   SplitMix64 rng(seed);
-  sampleInto(clusters, elements, candidates, visibility, tol, x, y, samplesPerPatch, rng, out);
-  sampleInto(clusters, elements, candidates, visibility, tol, y, x, samplesPerPatch, rng, out);
+  sampleInto(clusters, sources, elements, candidates, visibility, tol, x, y, samplesPerPatch, rng,
+             out);
+  sampleInto(clusters, sources, elements, candidates, visibility, tol, y, x, samplesPerPatch, rng,
+             out);
   return out;
 }
 

@@ -440,7 +440,8 @@ class Solver {
     }
     refinePending(pending, round, true);
     std::vector<LinkJob> jobs;
-    while (!stats_.linkBudgetReached && pushInconsistentLinks(jobs, round)) {
+    while (!stats_.linkBudgetReached &&
+           (pushInconsistentLinks(jobs, round) || pushSourceInconsistentLinks(jobs, round))) {
       pending.clear();
       makeLinksInBatches(jobs, pending);
       jobs.clear();
@@ -511,10 +512,13 @@ class Solver {
         stack.emplace_back(x, cy.right);
       }
     }
+    // Sources picked half by area, half by power as of now (brightest_'s first entries are the
+    // patches' own elements).
+    const SourcePicker sources(tree, std::span(brightest_).first(scene_.patches.size()));
     std::vector<ClusterSampling> sampled(made.size());
     parallelForEach(made.size(), [&](size_t i) {
-      sampled[i] = sampleClusterLink(tree, tree_, *candidates_, visibility_, tol_, made[i].x,
-                                     made[i].y, options_.clusterSamples,
+      sampled[i] = sampleClusterLink(tree, sources, tree_, *candidates_, visibility_, tol_,
+                                     made[i].x, made[i].y, options_.clusterSamples,
                                      mixSeed(options_.seed ^ kClusterSeed, made[i].x, made[i].y));
     });
     for (size_t i = 0; i < made.size(); ++i) {
@@ -778,6 +782,140 @@ class Solver {
     });
   }
 
+  /// Source-side consistency, the mirror of pushInconsistentLinks: an element gathers each
+  /// source's mean radiosity, but its kernel weighs the source's parts unequally, and where the
+  /// source's radiosity varies the element gets the wrong value. Per link that error is small
+  /// (linkError's sourceA/B, under the BF threshold), but it has the same sign at every link
+  /// into an element whose sources all brighten the same way: a high ceiling over a lit room
+  /// sees walls and pillars that are bright at the bottom, far from it, and dark at the top, next
+  /// to it (lit-doom-fd2-map03: the ceilings over one lamp 50-70 % too bright, shrinking only
+  /// to +31 % at a 25x finer BF threshold). So per receiving element the sum over its links of
+  /// ρ F (B̃ − B̄) / B, B̃ the source's pieces' radiosity weighted by the point form factor from
+  /// the element's centroid (computeSourceWeights) and B̄ their mean, must stay within
+  /// RadiosityOptions::sourceEpsilon (or relativeEpsilon if smaller); otherwise the links adding
+  /// most to it are refined at the source. Links with taps gather at their samples
+  /// already and are left out. Returns whether any link was replaced (by `jobs`).
+  bool pushSourceInconsistentLinks(std::vector<LinkJob>& jobs, RefinementStats& round) {
+    computeSourceWeights();
+    struct Entry {
+      uint32_t receiver = kNoElement, link = 0;
+      double error = 0;  ///< relative to the receiver's radiosity, signed
+    };
+    std::vector<Entry> entries(2 * links_.size());
+    parallelForEach(links_.size(), [&](size_t i) {
+      const Link& l = links_[i];
+      if (l.tapCount > 0) return;
+      for (const bool intoA : {true, false}) {
+        const uint32_t receiver = intoA ? l.a : l.b, source = intoA ? l.b : l.a;
+        const uint32_t at = intoA ? l.childWeightsOfB : l.childWeightsOfA;
+        if (at == UINT32_MAX || !canSplit(source)) continue;
+        Rgb weighted{};
+        const uint32_t pieces = sourcePieces_[at].element;
+        for (uint32_t c = 1; c <= pieces; ++c) {
+          const double w = sourcePieces_[at + c].weight;
+          const Rgb& b = radiosity_[sourcePieces_[at + c].element];
+          weighted = {weighted.r + w * b.r, weighted.g + w * b.g, weighted.b + w * b.b};
+        }
+        const Rgb& mean = radiosity_[source];
+        const Rgb& rho = reflectance_[tree_[receiver].patch];
+        const Rgb& own = radiosity_[receiver];
+        const double level = own.r + own.g + own.b;
+        if (!(level > 0)) continue;
+        const double f = intoA ? l.formFactorAB : l.formFactorBA;
+        const double diff = rho.r * (weighted.r - mean.r) + rho.g * (weighted.g - mean.g) +
+                            rho.b * (weighted.b - mean.b);
+        entries[2 * i + (intoA ? 0 : 1)] = {receiver, static_cast<uint32_t>(i), f * diff / level};
+      }
+    });
+    std::erase_if(entries, [](const Entry& e) { return e.receiver == kNoElement || e.error == 0; });
+    std::vector<double> sum(tree_.size(), 0.0);
+    for (const Entry& e : entries) sum[e.receiver] += e.error;
+    const double budget = std::min(options_.relativeEpsilon, options_.sourceEpsilon);
+    std::erase_if(entries, [&](const Entry& e) {
+      return !(std::abs(sum[e.receiver]) > budget) || (e.error > 0) != (sum[e.receiver] > 0);
+    });
+    if (entries.empty()) return false;
+    std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
+      if (x.receiver != y.receiver) return x.receiver < y.receiver;
+      if (std::abs(x.error) != std::abs(y.error)) return std::abs(x.error) > std::abs(y.error);
+      return x.link < y.link;
+    });
+    std::vector<uint32_t> splitAt(links_.size(), kNoElement);
+    for (const Entry& e : entries) {
+      double& remaining = sum[e.receiver];
+      if (!(std::abs(remaining) > budget)) continue;
+      remaining -= e.error;
+      const Link& l = links_[e.link];
+      if (splitAt[e.link] == kNoElement) splitAt[e.link] = e.receiver == l.a ? l.b : l.a;
+    }
+    size_t kept = 0;
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      if (splitAt[i] == kNoElement)
+        links_[kept++] = links_[i];
+      else
+        replaceBy(links_[i], splitAt[i], 0, jobs, round);
+    }
+    links_.resize(kept);
+    return true;
+  }
+
+  /// Per end e of a link with children: its pieces kSourcePieceDepth levels down (or leaves
+  /// above that), each weighted by the point form factor from the other end's centroid (summing
+  /// to 1; by area when e lies wholly behind it). A source's children alone can hide its
+  /// variation: a floor-to-ceiling pillar face cut in two has two halves of the same mean when
+  /// the lamp sits at the height of the cut, while a ceiling sees only the dark top of the upper
+  /// half. Geometry only: kept in sourcePieces_ (Link::childWeightsOfA/B: a count, then the
+  /// pieces), new ones computed in parallel.
+  void computeSourceWeights() {
+    struct Missing {
+      uint32_t link;
+      bool ofA;
+      std::vector<uint32_t> pieces;
+    };
+    std::vector<Missing> missing;
+    for (uint32_t i = 0; i < links_.size(); ++i) {
+      Link& l = links_[i];
+      if (l.tapCount > 0) continue;
+      for (const bool ofA : {true, false}) {
+        const uint32_t e = ofA ? l.a : l.b;
+        uint32_t& at = ofA ? l.childWeightsOfA : l.childWeightsOfB;
+        if (at != UINT32_MAX || tree_[e].isLeaf()) continue;
+        Missing m{i, ofA, {}};
+        std::vector<std::pair<uint32_t, uint32_t>> stack{{e, 0}};
+        while (!stack.empty()) {
+          const auto [x, depth] = stack.back();
+          stack.pop_back();
+          const Element& el = tree_[x];
+          if (el.isLeaf() || depth == kSourcePieceDepth) {
+            m.pieces.push_back(x);
+            continue;
+          }
+          for (uint32_t c = el.firstChild + el.childCount; c-- > el.firstChild;)
+            stack.emplace_back(c, depth + 1);
+        }
+        at = static_cast<uint32_t>(sourcePieces_.size());
+        sourcePieces_.push_back({static_cast<uint32_t>(m.pieces.size()), 0});
+        for (const uint32_t piece : m.pieces) sourcePieces_.push_back({piece, 0});
+        missing.push_back(std::move(m));
+      }
+    }
+    parallelForEach(missing.size(), [&](size_t k) {
+      const Missing& m = missing[k];
+      const Link& l = links_[m.link];
+      const Element& e = tree_[m.ofA ? l.a : l.b];
+      const Element& other = tree_[m.ofA ? l.b : l.a];
+      SourcePiece* out = sourcePieces_.data() + (m.ofA ? l.childWeightsOfA : l.childWeightsOfB) + 1;
+      const Vec3 x = other.polygon.centroid();
+      double total = 0;
+      for (size_t c = 0; c < m.pieces.size(); ++c)
+        total += out[c].weight = static_cast<float>(
+            pointFormFactorToFront(x, other.polygon.plane, tree_[m.pieces[c]].polygon, tol_));
+      for (size_t c = 0; c < m.pieces.size(); ++c)
+        out[c].weight = static_cast<float>(total > 0 ? out[c].weight / total
+                                                     : tree_[m.pieces[c]].area / e.area);
+    });
+  }
+
   /// Drops the taps of links that refinement replaced (they are only appended).
   void compactTaps() {
     std::vector<Tap> kept;
@@ -970,7 +1108,14 @@ class Solver {
   Tolerance tol_;
   ElementTree tree_;
   std::vector<Link> links_;
-  std::vector<Tap> taps_;              ///< of the Partial links (Link::tapBegin)
+  std::vector<Tap> taps_;  ///< of the Partial links (Link::tapBegin)
+  /// How far below a source its pieces are weighed (computeSourceWeights): up to 16 pieces.
+  static constexpr uint32_t kSourcePieceDepth = 2;
+  struct SourcePiece {
+    uint32_t element = 0;  ///< a piece; in a group's first entry, the group's size
+    float weight = 0;
+  };
+  std::vector<SourcePiece> sourcePieces_;  ///< computeSourceWeights' (Link::childWeightsOfA/B)
   std::vector<double> deviationPool_;  ///< computeChildDeviations' values (Link::deviationsAtA/B)
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element

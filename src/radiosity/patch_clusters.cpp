@@ -66,12 +66,15 @@ uint32_t ClusterTree::build(uint32_t begin, uint32_t end, const Scene& scene,
 
 uint32_t ClusterTree::patchByArea(uint32_t id, double u) const {
   const Cluster& c = nodes_[id];
-  const double lo = areaBefore_[c.begin], hi = areaBefore_[c.end];
+  return order_[positionByWeight(areaBefore_, c.begin, c.end, u)];
+}
+
+uint32_t positionByWeight(std::span<const double> before, uint32_t begin, uint32_t end, double u) {
+  const double lo = before[begin], hi = before[end];
   const double target = lo + u * (hi - lo);
   // The last position whose running sum is at or below the target.
-  auto it =
-      std::upper_bound(areaBefore_.begin() + c.begin + 1, areaBefore_.begin() + c.end, target);
-  return order_[static_cast<size_t>(it - areaBefore_.begin()) - 1];
+  const auto it = std::upper_bound(before.begin() + begin + 1, before.begin() + end, target);
+  return static_cast<uint32_t>(it - before.begin()) - 1;
 }
 
 double boxDistance(const Aabb& a, const Aabb& b) {

@@ -49,6 +49,8 @@ class ClusterTree {
   uint32_t leafOf(uint32_t p) const { return leafOf_[p]; }
   /// A patch of cluster `id` picked with probability proportional to its area, `u` in [0, 1).
   uint32_t patchByArea(uint32_t id, double u) const;
+  /// Running sums of the patch areas in the tree's order (n + 1 values, the first 0).
+  std::span<const double> areaBefore() const { return areaBefore_; }
 
  private:
   uint32_t build(uint32_t begin, uint32_t end, const Scene& scene,
@@ -60,6 +62,10 @@ class ClusterTree {
   std::vector<uint32_t> leafOf_;
   std::vector<double> areaBefore_;  ///< per position of order(): Σ areas before it (n + 1 values)
 };
+
+/// The position in [begin, end) picked with probability proportional to its weight, given the
+/// running sums of the weights `before` (before[i] = Σ weights of positions < i), `u` in [0, 1).
+uint32_t positionByWeight(std::span<const double> before, uint32_t begin, uint32_t end, double u);
 
 /// The smallest distance between two boxes (0 when they touch or overlap).
 double boxDistance(const Aabb& a, const Aabb& b);

@@ -90,6 +90,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
             {"epsilon", options.epsilon},
             {"form_factor_tolerance", options.formFactor.relativeTolerance},
             {"relative_epsilon", options.relativeEpsilon},
+            {"source_epsilon", options.sourceEpsilon},
             {"min_area", options.minArea},
             {"tolerance", options.tolerance},
             {"max_refinements", options.maxRefinements},

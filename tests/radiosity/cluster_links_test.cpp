@@ -80,6 +80,11 @@ struct OpposedSquares {
   }
 };
 
+/// Every patch at brightness 0: sources picked by area alone.
+std::vector<double> dark(const ClusterTree& tree) {
+  return std::vector<double>(tree.order().size(), 0.0);
+}
+
 /// The receiving square's cluster (patches 0-3) and the other one, under the root.
 std::pair<uint32_t, uint32_t> squares(const ClusterTree& tree) {
   const Cluster& root = tree[0];
@@ -97,8 +102,9 @@ TEST(ClusterLinkTest, SampledTransferMatchesTheExactFormFactor) {
   const auto [lower, upper] = squares(tree);
   ASSERT_EQ(tree[lower].size(), 4u);
   ASSERT_EQ(tree[upper].size(), 4u);
-  const ClusterSampling got = sampleClusterLink(tree, elements, candidates, open,
-                                                s.scene.tolerance(), lower, upper, 4000, 7);
+  const ClusterSampling got =
+      sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, candidates, open,
+                        s.scene.tolerance(), lower, upper, 4000, 7);
   // Per receiving patch: Σ coefficient = its form factor to the other square (B = 1 there).
   std::vector<double> into(s.scene.patches.size(), 0.0);
   for (const ClusterTap& t : got.taps) {
@@ -120,6 +126,84 @@ TEST(ClusterLinkTest, SampledTransferMatchesTheExactFormFactor) {
   EXPECT_NEAR(howellC11(1, 1), 0.19982, 1e-5);  // the formula itself, against the catalogue
 }
 
+TEST(ClusterLinkTest, PowerPickedSourcesKeepTheFormFactorUnbiased) {
+  // The same squares with the upper pieces at very different brightness: the picks follow the
+  // power half the time, and the taps still sum to the exact form factor.
+  const double c = 3;
+  OpposedSquares s(c);
+  const ClusterTree tree(s.scene);
+  const ElementTree elements(s.scene);
+  FixedOracle open(true, false);
+  const CandidatePairs candidates(open, tree);
+  const auto [lower, upper] = squares(tree);
+  const std::vector<double> brightness = {0, 0, 0, 0, 50, 1, 0, 3};
+  const ClusterSampling got =
+      sampleClusterLink(tree, SourcePicker(tree, brightness), elements, candidates, open,
+                        s.scene.tolerance(), lower, upper, 20000, 11);
+  double lowerToUpper = 0;
+  for (const ClusterTap& t : got.taps)
+    if (t.receiver < 4) lowerToUpper += t.coefficient * s.scene.patches[t.receiver].polygon.area();
+  // Weights between 0.68 and 2 (A_q / P(q)) and the kernel's ~35 %: a relative spread under
+  // ~60 % per sample, 80,000 samples: standard error ≲ 0.2 %; 1 % is five of them.
+  const double exact = howellC11(1, c);
+  EXPECT_NEAR(lowerToUpper, exact, 0.01 * exact);
+}
+
+TEST(ClusterLinkTest, SmallBrightSourceIsFoundByPowerAndMissedByArea) {
+  // A 1 x 1 floor in two pieces under a dim 1 x 1 ceiling with a 1 cm lamp just below it: by
+  // area the lamp is picked once in 10^4 samples, by power about every other sample, and the
+  // light it sends is then estimated within a few per cent of the exact point-source value.
+  Scene scene;
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  SceneBuilder b(scene, Tolerance{4.0});
+  ASSERT_TRUE(b.addAxisRect(2, true, {0, 0, 0}, {0.5, 1, 0}, m));
+  ASSERT_TRUE(b.addAxisRect(2, true, {0.5, 0, 0}, {1, 1, 0}, m));
+  ASSERT_TRUE(b.addAxisRect(2, false, {0, 0, 3}, {1, 1, 3}, m));
+  ASSERT_TRUE(b.addAxisRect(2, false, {0.495, 0.495, 2.99}, {0.505, 0.505, 2.99}, m));
+  const ClusterTree tree(scene);
+  const ElementTree elements(scene);
+  FixedOracle open(true, false);
+  const CandidatePairs candidates(open, tree);
+  const uint32_t floor = tree.patchesOf(tree[0].left)[0] < 2 ? tree[0].left : tree[0].right;
+  const uint32_t ceiling = floor == tree[0].left ? tree[0].right : tree[0].left;
+  ASSERT_EQ(tree[ceiling].size(), 2u);
+  const double lampB = 1e4;
+  const std::vector<double> brightness = {0, 0, 0.01, lampB};
+  auto lampLight = [&](const ClusterSampling& got, size_t& picks) {
+    double power = 0;  // Σ over the floor's taps from the lamp of coefficient · area · B
+    picks = 0;
+    for (const ClusterTap& t : got.taps) {
+      if (t.receiver >= 2 || elements[t.source].patch != 3) continue;
+      ++picks;
+      power += t.coefficient * scene.patches[t.receiver].polygon.area() * lampB;
+    }
+    return power;
+  };
+  // Exact: a 1e-4 m² lamp 2.99 above the centre of the floor: A_lamp · B · F(lamp → floor),
+  // F from a point over the common corner of four 0.5 x 0.5 rectangles.
+  const double h = 2.99, a = 0.5 / h;
+  const double corner =
+      (a / std::sqrt(1 + a * a) * std::atan(a / std::sqrt(1 + a * a))) / std::numbers::pi;
+  const double exact = 1e-4 * lampB * 4 * corner;
+  size_t byPower = 0, byArea = 0;
+  const double found =
+      lampLight(sampleClusterLink(tree, SourcePicker(tree, brightness), elements, candidates, open,
+                                  scene.tolerance(), floor, ceiling, 64, 5),
+                byPower);
+  const double missed =
+      lampLight(sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, candidates, open,
+                                  scene.tolerance(), floor, ceiling, 64, 5),
+                byArea);
+  // 128 floor samples: about 64 pick the lamp by power (±~6 at one standard deviation).
+  EXPECT_GT(byPower, 40u);
+  EXPECT_LT(byPower, 90u);
+  // The kernel varies ~10 % over the floor: ~1.3 % standard error with ~64 picks; 8 % is six.
+  EXPECT_NEAR(found, exact, 0.08 * exact);
+  // By area: no sample finds the lamp (expected 0.013 picks), so the floor would stay dark.
+  EXPECT_EQ(byArea, 0u);
+  EXPECT_EQ(missed, 0.0);
+}
+
 TEST(ClusterLinkTest, BlockedSegmentsAndUnlistedPairsCarryNothing) {
   OpposedSquares s(3);
   const ClusterTree tree(s.scene);
@@ -127,15 +211,16 @@ TEST(ClusterLinkTest, BlockedSegmentsAndUnlistedPairsCarryNothing) {
   const auto [lower, upper] = squares(tree);
   FixedOracle blocked(true, true);
   const CandidatePairs all(blocked, tree);
-  const ClusterSampling b =
-      sampleClusterLink(tree, elements, all, blocked, s.scene.tolerance(), lower, upper, 8, 1);
+  const ClusterSampling b = sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, all,
+                                              blocked, s.scene.tolerance(), lower, upper, 8, 1);
   EXPECT_TRUE(b.taps.empty());
   EXPECT_EQ(b.rays, 8u * 8u);
   FixedOracle none(false, false);  // lists no pair (forEachCandidatePair visits nothing)
   const CandidatePairs listed(none, tree);
   EXPECT_EQ(listed.count(), 0u);
   const ClusterSampling n =
-      sampleClusterLink(tree, elements, listed, none, s.scene.tolerance(), lower, upper, 8, 1);
+      sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, listed, none,
+                        s.scene.tolerance(), lower, upper, 8, 1);
   EXPECT_TRUE(n.taps.empty());
   EXPECT_EQ(n.rays, 0u);
 }
@@ -191,8 +276,9 @@ TEST(ClusterLinkTest, FacesTurnedAwayReceiveNothing) {
   const ElementTree elements(scene);
   FixedOracle open(true, false);
   const CandidatePairs candidates(open, tree);
-  const ClusterSampling got = sampleClusterLink(tree, elements, candidates, open, scene.tolerance(),
-                                                tree[0].left, tree[0].right, 64, 3);
+  const ClusterSampling got =
+      sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, candidates, open,
+                        scene.tolerance(), tree[0].left, tree[0].right, 64, 3);
   EXPECT_TRUE(got.taps.empty());
   EXPECT_EQ(got.rays, 0u);
 }

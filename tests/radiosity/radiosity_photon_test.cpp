@@ -6,15 +6,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "generators/scene_builder.h"
+#include "input/load_scene.h"
 #include "radiosity/furnace_scene.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/photon_comparison.h"
 #include "radiosity/photon_reference.h"
+#include "radiosity/radiosity_quality.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
 #include "scene/contact_split.h"
@@ -159,6 +162,64 @@ TEST(RadiosityPhotonTest, PartialLinksGatherThePartOfTheSourceInView) {
     EXPECT_LT(ev, 0.01 * mv);
     EXPECT_NEAR(s, mv, 0.03 * mv + 4 * ev) << "channel " << ch;
   }
+}
+
+TEST(RadiosityPhotonTest, CeilingOverALampSeesTheDarkTopsOfPillarsNotTheirMeans) {
+  // A room of the shared level lit-doom-fd2-map03, cut out with one lamp: a 0.25-unit panel
+  // under a ceiling beam, beside a wall, 19 units above the floor. The ceiling 12 units higher
+  // is lit only by what the room sends up: walls and two floor-to-ceiling pillars that are bright
+  // at the bottom and dark at the top, next to it. Gathering those sources' means puts it 76 %
+  // over light tracing; the source-consistency check (RadiosityOptions::sourceEpsilon) brings it
+  // to ~16 % at `high`. The 25 % bound is a ratchet over today's error, not a derived bound:
+  // it fails without the check (76 %) and at sourceEpsilon 0.1 (36 %).
+  const std::string path = std::string(GV_SHARED_DATA_DIR) + "/levels/lit-doom-fd2-map03.obj";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
+  const Scene level = loadScene(path);
+  Scene room;
+  for (Material m : level.materials) {
+    if (m.name != "light_s84_0") m.emission = {};
+    room.addMaterial(m);
+  }
+  const Aabb box{{-43, 5, -16}, {-27, 13, 17}};
+  for (const Patch& p : level.patches) {
+    Aabb b;
+    for (const Vec3& v : p.polygon.vertices) b.add(v);
+    if (b.lo.x <= box.hi.x && b.hi.x >= box.lo.x && b.lo.y <= box.hi.y && b.hi.y >= box.lo.y &&
+        b.lo.z <= box.hi.z && b.hi.z >= box.lo.z)
+      room.patches.push_back(p);
+  }
+  ASSERT_EQ(room.emitterCount(), 1u);
+  ASSERT_GT(room.patches.size(), 150u);
+  room = splitAtContacts(std::move(room));
+  const EmbreeScene bvh(room);
+  RayVisibility visibility(room, bvh, 16);
+  RadiosityOptions options;
+  applyRadiosityQuality(RadiosityQuality::High, options);
+  const RadiosityResult r = solveRadiosity(room, visibility, options);
+  PhotonOptions po;
+  po.photons = 2'000'000;
+  const PhotonResult ref = photonReference(room, bvh, po);
+  double solver = 0, photons = 0, variance = 0, area = 0;
+  for (size_t p = 0; p < room.patches.size(); ++p) {
+    const ConvexPolygon& poly = room.patches[p].polygon;
+    const Vec3 c = poly.centroid();
+    if (room.materials[room.patches[p].material].name != "ceiling" || c.z < 16 || c.x < -42 ||
+        c.x > -28 || c.y < 6 || c.y > 12)
+      continue;
+    const double a = poly.area();
+    solver += a * r.patchRadiosity[p].r;
+    photons += a * ref.radiosity[p].r;
+    variance += a * a * ref.standardError[p].r * ref.standardError[p].r;
+    area += a;
+  }
+  ASSERT_GT(area, 50.0);
+  const double relative = solver / photons - 1;
+  std::printf(
+      "ceiling over the lamp: solver %.4g, photons %.4g (standard error %.2f %%): %+.1f %%\n",
+      solver / area, photons / area, 100 * std::sqrt(variance) / photons, 100 * relative);
+  RecordProperty("ceiling_relative_error", std::to_string(relative));
+  EXPECT_LT(std::sqrt(variance) / photons, 0.02);  // the reference can tell
+  EXPECT_LT(std::abs(relative), 0.25);
 }
 
 }  // namespace
