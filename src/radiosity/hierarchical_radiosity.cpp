@@ -827,7 +827,7 @@ class Solver {
       if (l.tapCount > 0) return;
       for (const bool intoA : {true, false}) {
         const uint32_t receiver = intoA ? l.a : l.b, source = intoA ? l.b : l.a;
-        const uint32_t at = intoA ? l.childWeightsOfB : l.childWeightsOfA;
+        const uint32_t at = intoA ? l.sourcePiecesOfB : l.sourcePiecesOfA;
         if (at == UINT32_MAX || !canSplit(source)) continue;
         Rgb weighted{};
         const uint32_t pieces = sourcePieces_[at].element;
@@ -884,7 +884,7 @@ class Solver {
   /// to 1; by area when e lies wholly behind it). A source's children alone can hide its
   /// variation: a floor-to-ceiling pillar face cut in two has two halves of the same mean when
   /// the lamp sits at the height of the cut, while a ceiling sees only the dark top of the upper
-  /// half. Geometry only: kept in sourcePieces_ (Link::childWeightsOfA/B: a count, then the
+  /// half. Geometry only: kept in sourcePieces_ (Link::sourcePiecesOfA/B: a count, then the
   /// pieces), new ones computed in parallel.
   void computeSourceWeights() {
     struct Missing {
@@ -898,7 +898,7 @@ class Solver {
       if (l.tapCount > 0) continue;
       for (const bool ofA : {true, false}) {
         const uint32_t e = ofA ? l.a : l.b;
-        uint32_t& at = ofA ? l.childWeightsOfA : l.childWeightsOfB;
+        uint32_t& at = ofA ? l.sourcePiecesOfA : l.sourcePiecesOfB;
         if (at != UINT32_MAX || tree_[e].isLeaf()) continue;
         Missing m{i, ofA, {}};
         std::vector<std::pair<uint32_t, uint32_t>> stack{{e, 0}};
@@ -924,7 +924,7 @@ class Solver {
       const Link& l = links_[m.link];
       const Element& e = tree_[m.ofA ? l.a : l.b];
       const Element& other = tree_[m.ofA ? l.b : l.a];
-      SourcePiece* out = sourcePieces_.data() + (m.ofA ? l.childWeightsOfA : l.childWeightsOfB) + 1;
+      SourcePiece* out = sourcePieces_.data() + (m.ofA ? l.sourcePiecesOfA : l.sourcePiecesOfB) + 1;
       const Vec3 x = other.polygon.centroid();
       double total = 0;
       for (size_t c = 0; c < m.pieces.size(); ++c)
@@ -1136,7 +1136,7 @@ class Solver {
     float weight = 0;
   };
   std::vector<double> leafSpread_;         ///< per element, leaves only (updateLeafSpread)
-  std::vector<SourcePiece> sourcePieces_;  ///< computeSourceWeights' (Link::childWeightsOfA/B)
+  std::vector<SourcePiece> sourcePieces_;  ///< computeSourceWeights' (Link::sourcePiecesOfA/B)
   std::vector<double> deviationPool_;  ///< computeChildDeviations' values (Link::deviationsAtA/B)
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element

@@ -37,9 +37,9 @@ struct Link {
   /// The solver's cache of the per-child form-factor deviations at each end (receiver
   /// consistency); UINT32_MAX until first needed.
   uint32_t deviationsAtA = UINT32_MAX, deviationsAtB = UINT32_MAX;
-  /// The solver's cache of how the other end's kernel weighs each end's children as a source
+  /// The solver's cache of each end's pieces as a source, weighed by the other end's kernel
   /// (source consistency); UINT32_MAX until first needed.
-  uint32_t childWeightsOfA = UINT32_MAX, childWeightsOfB = UINT32_MAX;
+  uint32_t sourcePiecesOfA = UINT32_MAX, sourcePiecesOfB = UINT32_MAX;
 };
 
 /// Solver parameters. Defaults aim at converged answers (per-patch errors well below 1 %) on
