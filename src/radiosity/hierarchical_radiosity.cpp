@@ -700,15 +700,22 @@ class Solver {
           any = true;
         }
     if (!any) return false;
+    replaceLinksAt(splitBy, jobs, round);
+    return true;
+  }
+
+  /// Replaces every link i with splitAt[i] != kNoElement by the jobs of its links from that
+  /// end's children (replaceBy); keeps the others, in order.
+  void replaceLinksAt(const std::vector<uint32_t>& splitAt, std::vector<LinkJob>& jobs,
+                      RefinementStats& round) {
     size_t kept = 0;
     for (uint32_t i = 0; i < links_.size(); ++i) {
-      if (splitBy[i] == kNoElement)
+      if (splitAt[i] == kNoElement)
         links_[kept++] = links_[i];
       else
-        replaceBy(links_[i], splitBy[i], 0, jobs, round);
+        replaceBy(links_[i], splitAt[i], 0, jobs, round);
     }
     links_.resize(kept);
-    return true;
   }
 
   struct ConsistencyScratch {
@@ -868,14 +875,7 @@ class Solver {
       const Link& l = links_[e.link];
       if (splitAt[e.link] == kNoElement) splitAt[e.link] = e.receiver == l.a ? l.b : l.a;
     }
-    size_t kept = 0;
-    for (uint32_t i = 0; i < links_.size(); ++i) {
-      if (splitAt[i] == kNoElement)
-        links_[kept++] = links_[i];
-      else
-        replaceBy(links_[i], splitAt[i], 0, jobs, round);
-    }
-    links_.resize(kept);
+    replaceLinksAt(splitAt, jobs, round);
     return true;
   }
 

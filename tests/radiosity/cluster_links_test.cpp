@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include "generators/scene_builder.h"
@@ -80,10 +81,31 @@ struct OpposedSquares {
   }
 };
 
-/// Every patch at brightness 0: sources picked by area alone.
-std::vector<double> dark(const ClusterTree& tree) {
-  return std::vector<double>(tree.order().size(), 0.0);
-}
+/// What sampleClusterLink needs for a scene: its cluster tree and elements, and a FixedOracle
+/// with its candidate pairs (every pair or none; every segment clear or blocked).
+struct Sampling {
+  ClusterTree tree;
+  ElementTree elements;
+  FixedOracle oracle;
+  CandidatePairs candidates;
+  Tolerance tol;
+  explicit Sampling(const Scene& scene, bool pairs = true, bool blocked = false)
+      : tree(scene),
+        elements(scene),
+        oracle(pairs, blocked),
+        candidates(oracle, tree),
+        tol(scene.tolerance()) {}
+  /// The link between clusters x and y, sources picked by `brightness` (per patch).
+  ClusterSampling sample(std::span<const double> brightness, uint32_t x, uint32_t y,
+                         int samplesPerPatch, uint64_t seed) const {
+    return sampleClusterLink(tree, SourcePicker(tree, brightness), elements, candidates, oracle,
+                             tol, x, y, samplesPerPatch, seed);
+  }
+  /// The same with every patch dark: sources picked by area alone.
+  ClusterSampling sampleByArea(uint32_t x, uint32_t y, int samplesPerPatch, uint64_t seed) const {
+    return sample(std::vector<double>(tree.order().size(), 0.0), x, y, samplesPerPatch, seed);
+  }
+};
 
 /// The receiving square's cluster (patches 0-3) and the other one, under the root.
 std::pair<uint32_t, uint32_t> squares(const ClusterTree& tree) {
@@ -95,16 +117,13 @@ std::pair<uint32_t, uint32_t> squares(const ClusterTree& tree) {
 TEST(ClusterLinkTest, SampledTransferMatchesTheExactFormFactor) {
   const double c = 3;
   OpposedSquares s(c);
-  const ClusterTree tree(s.scene);
-  const ElementTree elements(s.scene);
-  FixedOracle open(true, false);
-  const CandidatePairs candidates(open, tree);
+  const Sampling open(s.scene);
+  const ClusterTree& tree = open.tree;
+  const ElementTree& elements = open.elements;
   const auto [lower, upper] = squares(tree);
   ASSERT_EQ(tree[lower].size(), 4u);
   ASSERT_EQ(tree[upper].size(), 4u);
-  const ClusterSampling got =
-      sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, candidates, open,
-                        s.scene.tolerance(), lower, upper, 4000, 7);
+  const ClusterSampling got = open.sampleByArea(lower, upper, 4000, 7);
   // Per receiving patch: Σ coefficient = its form factor to the other square (B = 1 there).
   std::vector<double> into(s.scene.patches.size(), 0.0);
   for (const ClusterTap& t : got.taps) {
@@ -131,15 +150,10 @@ TEST(ClusterLinkTest, PowerPickedSourcesKeepTheFormFactorUnbiased) {
   // power half the time, and the taps still sum to the exact form factor.
   const double c = 3;
   OpposedSquares s(c);
-  const ClusterTree tree(s.scene);
-  const ElementTree elements(s.scene);
-  FixedOracle open(true, false);
-  const CandidatePairs candidates(open, tree);
-  const auto [lower, upper] = squares(tree);
+  const Sampling open(s.scene);
+  const auto [lower, upper] = squares(open.tree);
   const std::vector<double> brightness = {0, 0, 0, 0, 50, 1, 0, 3};
-  const ClusterSampling got =
-      sampleClusterLink(tree, SourcePicker(tree, brightness), elements, candidates, open,
-                        s.scene.tolerance(), lower, upper, 20000, 11);
+  const ClusterSampling got = open.sample(brightness, lower, upper, 20000, 11);
   double lowerToUpper = 0;
   for (const ClusterTap& t : got.taps)
     if (t.receiver < 4) lowerToUpper += t.coefficient * s.scene.patches[t.receiver].polygon.area();
@@ -160,10 +174,9 @@ TEST(ClusterLinkTest, SmallBrightSourceIsFoundByPowerAndMissedByArea) {
   ASSERT_TRUE(b.addAxisRect(2, true, {0.5, 0, 0}, {1, 1, 0}, m));
   ASSERT_TRUE(b.addAxisRect(2, false, {0, 0, 3}, {1, 1, 3}, m));
   ASSERT_TRUE(b.addAxisRect(2, false, {0.495, 0.495, 2.99}, {0.505, 0.505, 2.99}, m));
-  const ClusterTree tree(scene);
-  const ElementTree elements(scene);
-  FixedOracle open(true, false);
-  const CandidatePairs candidates(open, tree);
+  const Sampling open(scene);
+  const ClusterTree& tree = open.tree;
+  const ElementTree& elements = open.elements;
   const uint32_t floor = tree.patchesOf(tree[0].left)[0] < 2 ? tree[0].left : tree[0].right;
   const uint32_t ceiling = floor == tree[0].left ? tree[0].right : tree[0].left;
   ASSERT_EQ(tree[ceiling].size(), 2u);
@@ -186,14 +199,8 @@ TEST(ClusterLinkTest, SmallBrightSourceIsFoundByPowerAndMissedByArea) {
       (a / std::sqrt(1 + a * a) * std::atan(a / std::sqrt(1 + a * a))) / std::numbers::pi;
   const double exact = 1e-4 * lampB * 4 * corner;
   size_t byPower = 0, byArea = 0;
-  const double found =
-      lampLight(sampleClusterLink(tree, SourcePicker(tree, brightness), elements, candidates, open,
-                                  scene.tolerance(), floor, ceiling, 64, 5),
-                byPower);
-  const double missed =
-      lampLight(sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, candidates, open,
-                                  scene.tolerance(), floor, ceiling, 64, 5),
-                byArea);
+  const double found = lampLight(open.sample(brightness, floor, ceiling, 64, 5), byPower);
+  const double missed = lampLight(open.sampleByArea(floor, ceiling, 64, 5), byArea);
   // 128 floor samples: about 64 pick the lamp by power (±~6 at one standard deviation).
   EXPECT_GT(byPower, 40u);
   EXPECT_LT(byPower, 90u);
@@ -206,21 +213,15 @@ TEST(ClusterLinkTest, SmallBrightSourceIsFoundByPowerAndMissedByArea) {
 
 TEST(ClusterLinkTest, BlockedSegmentsAndUnlistedPairsCarryNothing) {
   OpposedSquares s(3);
-  const ClusterTree tree(s.scene);
-  const ElementTree elements(s.scene);
-  const auto [lower, upper] = squares(tree);
-  FixedOracle blocked(true, true);
-  const CandidatePairs all(blocked, tree);
-  const ClusterSampling b = sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, all,
-                                              blocked, s.scene.tolerance(), lower, upper, 8, 1);
+  const Sampling blocked(s.scene, true, true);
+  const auto [lower, upper] = squares(blocked.tree);
+  const ClusterSampling b = blocked.sampleByArea(lower, upper, 8, 1);
   EXPECT_TRUE(b.taps.empty());
   EXPECT_EQ(b.rays, 8u * 8u);
-  FixedOracle none(false, false);  // lists no pair (forEachCandidatePair visits nothing)
-  const CandidatePairs listed(none, tree);
-  EXPECT_EQ(listed.count(), 0u);
-  const ClusterSampling n =
-      sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, listed, none,
-                        s.scene.tolerance(), lower, upper, 8, 1);
+  const Sampling none(s.scene, false,
+                      false);  // lists no pair (forEachCandidatePair visits nothing)
+  EXPECT_EQ(none.candidates.count(), 0u);
+  const ClusterSampling n = none.sampleByArea(lower, upper, 8, 1);
   EXPECT_TRUE(n.taps.empty());
   EXPECT_EQ(n.rays, 0u);
 }
@@ -272,13 +273,8 @@ TEST(ClusterLinkTest, FacesTurnedAwayReceiveNothing) {
   SceneBuilder b(scene, Tolerance{5.0});
   ASSERT_TRUE(b.addAxisRect(2, true, {0, 0, 0}, {1, 1, 0}, m));
   ASSERT_TRUE(b.addAxisRect(2, true, {0, 0, 3}, {1, 1, 3}, m));
-  const ClusterTree tree(scene);
-  const ElementTree elements(scene);
-  FixedOracle open(true, false);
-  const CandidatePairs candidates(open, tree);
-  const ClusterSampling got =
-      sampleClusterLink(tree, SourcePicker(tree, dark(tree)), elements, candidates, open,
-                        scene.tolerance(), tree[0].left, tree[0].right, 64, 3);
+  const Sampling open(scene);
+  const ClusterSampling got = open.sampleByArea(open.tree[0].left, open.tree[0].right, 64, 3);
   EXPECT_TRUE(got.taps.empty());
   EXPECT_EQ(got.rays, 0u);
 }
