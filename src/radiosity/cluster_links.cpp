@@ -157,7 +157,8 @@ void sampleInto(const ClusterTree& clusters, const SourcePicker& sources,
       if (throughCrack(x, y, tol, blocked)) continue;
       out.taps.push_back(
           {p, elements.deepestContaining(q, y),
-           static_cast<float>(picked.weight / samplesPerPatch * kernel / std::numbers::pi)});
+           static_cast<float>(picked.weight / samplesPerPatch * kernel / std::numbers::pi),
+           StoredPoint(y)});
     }
   }
 }

@@ -35,6 +35,7 @@ struct ClusterLink {
 struct ClusterTap {
   uint32_t receiver = 0, source = 0;
   float coefficient = 0;
+  StoredPoint at;  ///< the segment's far end: `source` is re-found there when it is cut further
 };
 
 /// The oracle's candidate pairs, looked up by pair or by pair of clusters (every pair when the

@@ -28,6 +28,17 @@ struct Element {
   bool isLeaf() const { return childCount == 0; }
 };
 
+/// A point of an element kept in single precision: a sample's end, so that once its element has
+/// been cut further the deepest element there can be found again (ElementTree::deepestContaining
+/// picks the nearest child when rounding puts the point just outside all of them).
+struct StoredPoint {
+  float x = 0, y = 0, z = 0;
+  StoredPoint() = default;
+  explicit StoredPoint(const Vec3& p)
+      : x(static_cast<float>(p.x)), y(static_cast<float>(p.y)), z(static_cast<float>(p.z)) {}
+  Vec3 point() const { return {x, y, z}; }
+};
+
 /// How an element is cut into children. Quadrilaterals are the common case (HSA91's quadtree):
 /// four children through the midpoints of the edges and the vertex mean, except that a quad more
 /// than kMaxAspect times longer than wide is cut across its long direction only, into two, so that

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "radiosity/polygon_sampling.h"
@@ -17,14 +16,6 @@ namespace {
 
 double channelSum(const Rgb& c) {
   return c.r + c.g + c.b;
-}
-
-/// A direction about unit normal `n` with density cos θ / π (Malley's method).
-Vec3 cosineDirection(const Vec3& n, SplitMix64& rng) {
-  const auto [u, w] = perpendicularFrame(n);
-  const double r2 = rng.uniform(), phi = 2 * std::numbers::pi * rng.uniform();
-  const double r = std::sqrt(r2);
-  return u * (r * std::cos(phi)) + w * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r2));
 }
 
 struct Batch {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 namespace gv {
@@ -23,6 +24,13 @@ double kernelWeight(const Vec3& x, const Vec3& nx, const Vec3& y, const Vec3& ny
   const double cx = dot(nx, d), cy = -dot(ny, d);
   if (!(cx > 0) || !(cy > 0)) return 0.0;
   return cx * cy / (r2 * r2);
+}
+
+Vec3 cosineDirection(const Vec3& n, SplitMix64& rng) {
+  const auto [u, w] = perpendicularFrame(n);
+  const double r2 = rng.uniform(), phi = 2 * std::numbers::pi * rng.uniform();
+  const double r = std::sqrt(r2);
+  return u * (r * std::cos(phi)) + w * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - r2));
 }
 
 Vec3 uniformPoint(std::span<const Vec3> v, SplitMix64& rng) {

@@ -42,6 +42,10 @@ std::vector<Vec3> stratifiedPoints(std::span<const Vec3> vertices, int count, Sp
 /// point in it. No allocation (the photon tracer and the cluster links call it per sample).
 Vec3 uniformPoint(std::span<const Vec3> vertices, SplitMix64& rng);
 
+/// A direction about unit normal `n` with density cos θ / π (Malley's method): the photon
+/// tracer's diffuse bounces, and a gather whose mean over hits is Σ F·B.
+Vec3 cosineDirection(const Vec3& n, SplitMix64& rng);
+
 /// The weight of a visibility sample between `x` on a surface with unit normal `nx` and `y` with
 /// unit normal `ny`: the form-factor kernel cos θx cos θy / r² (0 when either faces away). The
 /// visibility of a link is the kernel-weighted mean of the samples, Σ K V / Σ K, not the plain
