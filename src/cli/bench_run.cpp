@@ -8,9 +8,12 @@
 #include <memory>
 
 #include "bsp/subdivision.h"
+#include "cli/scene_input.h"
 #include "quake/prt_file.h"
 #include "quake/prt_portal_graph.h"
 #include "radiosity/hierarchical_radiosity.h"
+#include "radiosity/photon_comparison.h"
+#include "radiosity/photon_reference.h"
 #include "radiosity/radiosity_checks.h"
 #include "radiosity/radiosity_quality.h"
 #include "radiosity/ray_visibility.h"
@@ -118,6 +121,41 @@ std::string skipped(const std::string& stages, const Budget& b) {
   return fmt::format("{} skipped: {:g} s budget spent", stages, b.maxSeconds());
 }
 
+/// Embree's BVH of a scene, shared by a level's solve and its photon reference.
+std::unique_ptr<EmbreeScene> bvhOf(const Scene& scene) {
+  return std::make_unique<EmbreeScene>(scene);
+}
+
+/// Solves radiosity as `radiosity` does by default (rays visibility) and records its figures
+/// and checks in `row`; nullopt when the budget stopped it.
+std::optional<RadiosityResult> benchRadiosity(const Scene& scene,
+                                              const std::unique_ptr<EmbreeScene>& bvh,
+                                              const BenchOptions& options, const Budget& budget,
+                                              BenchRow& row) {
+  try {
+    ProgressBar bar(row.name + ": radiosity refinement");
+    RayVisibility visibility(scene, *bvh, kBenchRadiosityRays);
+    RadiosityOptions ro;
+    applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
+    ro.threads = options.threads;
+    ro.refineProgress = watch(bar, budget);
+    const bool peakReset = resetPeakResident();
+    const auto t0 = Clock::now();
+    RadiosityResult result = solveRadiosity(scene, visibility, ro);
+    row.radiositySeconds = secondsSince(t0);
+    if (peakReset) row.radiosityPeakBytes = peakResidentBytes();
+    record(row, "radiosity", checkRadiosity(scene, result));
+    row.radiosityLinks = result.stats.rounds.empty() ? 0 : result.stats.rounds.back().links.total();
+    row.radiosityInteractions = result.stats.interactions;
+    row.radiosityRays = result.stats.rays;
+    row.radiosityHash = fmt::format("{:016x}", radiosityHash(result));
+    return result;
+  } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("radiosity", budget));
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 BenchRow benchScene(const std::string& name, const std::string& kind, const SceneMaker& make,
@@ -186,11 +224,12 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     return row;
   }
   record(row, "pairs", checkGraphShape(graph, scene.patches.size()));
+  VerifyReport verifyReport;
   {
     VerifyOptions verify;
     verify.rays = kBenchVerifyRays;
     verify.segments = kBenchVerifySegments;
-    const VerifyReport v = verifyVisibility(scene, graph, verify);
+    const VerifyReport& v = verifyReport = verifyVisibility(scene, graph, verify);
     std::optional<std::string> error;
     if (!v.ok())
       error = fmt::format("{} missing pairs, {} blocked VISIBLE, {} missing blockers{}",
@@ -204,6 +243,8 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
   row.pairsPartial = vs.pairsPartial;
   row.pairsListed = vs.pairsVisible + vs.pairsPartial;
   row.meanBlockers = vs.meanBlockersPerPartial;
+  if (verifyReport.tightnessPairs > 0)
+    row.excess = double(verifyReport.excess) / double(verifyReport.tightnessPairs);
   row.visHash = visibilityHash(graph);
 
   if (!options.radiosity) return row;
@@ -216,28 +257,45 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     row.notes.push_back(skipped("radiosity", budget));
     return row;
   }
-  try {
-    ProgressBar bar(name + ": radiosity refinement");
-    const EmbreeScene bvh(scene);
-    RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
-    RadiosityOptions ro;
-    applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
-    ro.threads = options.threads;
-    ro.refineProgress = watch(bar, budget);
-    const bool peakReset = resetPeakResident();
-    t0 = Clock::now();
-    const RadiosityResult result = solveRadiosity(scene, visibility, ro);
-    row.radiositySeconds = secondsSince(t0);
-    if (peakReset) row.radiosityPeakBytes = peakResidentBytes();
-    record(row, "radiosity", checkRadiosity(scene, result));
-    row.radiosityLinks = result.stats.rounds.empty() ? 0 : result.stats.rounds.back().links.total();
-    row.radiosityInteractions = result.stats.interactions;
-    row.radiosityRays = result.stats.rays;
-    row.radiosityHash = fmt::format("{:016x}", radiosityHash(result));
-  } catch (const BudgetExceeded&) {
-    row.notes.push_back(overBudget("radiosity", budget));
-  }
+  benchRadiosity(scene, bvhOf(scene), options, budget, row);
   return row;
+}
+
+void benchLitLevel(const std::string& litPath, const BenchOptions& options, BenchRow& row) {
+  const Budget budget(options.maxSeconds);
+  Scene scene;
+  try {
+    SceneInputOptions input;
+    input.contactSplit = true;  // as `radiosity` and `photons` read a scene
+    scene = loadPipelineScene(litPath, input);
+  } catch (const std::exception& e) {
+    row.failures.push_back(fmt::format("lit level: {}", e.what()));
+    return;
+  }
+  if (scene.emitterCount() == 0) {
+    row.notes.push_back(fmt::format("{}: no emitter, radiosity skipped", litPath));
+    return;
+  }
+  const std::unique_ptr<EmbreeScene> bvh = bvhOf(scene);
+  const std::optional<RadiosityResult> result = benchRadiosity(scene, bvh, options, budget, row);
+  if (!result) return;
+  const auto t0 = Clock::now();
+  PhotonOptions po;
+  po.photons = options.photons;
+  const PhotonResult reference = photonReference(scene, *bvh, po);
+  row.photonSeconds = secondsSince(t0);
+  // photons --compare's defaults: 4 standard errors plus 1 % per patch channel.
+  const PhotonComparison c = comparePhotons(scene, result->patchRadiosity, reference, 4, 0.01);
+  row.photonL2 = c.l2Reflected;
+  row.leaks = c.leakSurfaces;
+  if (c.worstRegion) row.worstRegion = c.worstRegion->relative;
+  std::optional<std::string> leak;
+  if (c.leakSurfaces > 0)
+    leak = fmt::format(
+        "{} surfaces lit where light tracing expected >= 10 hits and got none "
+        "(patch {} first)",
+        c.leakSurfaces, c.worstLeaks.front().patch);
+  record(row, fmt::format("no leak against {} photons", options.photons), leak);
 }
 
 void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow& row) {

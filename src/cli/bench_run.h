@@ -30,6 +30,7 @@ struct BenchOptions {
   size_t radiosityMaxPatches = 3000;  ///< larger scenes skip radiosity (its initial links are n²)
   double minCoverage = kVisibilityMinCoverage;  ///< BSP stop rule (`vis`'s default)
   int threads = 0;                              ///< propagation and PVS threads (0 = all cores)
+  uint64_t photons = 4'000'000;  ///< light-tracing photons of a lit level's reference
 };
 
 /// One scene's figures. Empty optionals: the stage did not run (see `notes`).
@@ -41,10 +42,18 @@ struct BenchRow {
   std::optional<size_t> cells, portals;
   std::optional<uint64_t> pairsListed, pairsVisible, pairsPartial;
   std::optional<double> meanBlockers;
+  /// Tightness (`verify`'s excess): of the sampled listed pairs, the share none of 48 segments
+  /// reaches free (issue #17's target: at most 0.5).
+  std::optional<double> excess;
   std::optional<size_t> radiosityLinks;
   std::optional<size_t> radiosityInteractions;
   std::optional<uint64_t> radiosityRays;
   std::optional<double> radiosityPeakBytes;  ///< peak resident memory of the radiosity stage
+  /// A lit level's radiosity against light tracing (comparePhotons, as `photons --compare`):
+  /// area-weighted L2 of B − Ke, surfaces lit where the tracer expected >= 10 hits and got none,
+  /// the worst region's signed relative error, and the reference's time.
+  std::optional<double> photonL2, worstRegion, photonSeconds;
+  std::optional<size_t> leaks;
   std::optional<size_t> pvsLeafs;
   std::optional<double> pvsMeanLeafs;
   std::string visHash, radiosityHash, pvsHash;  ///< FNV-1a, 16 hex digits; empty if not run
@@ -61,6 +70,12 @@ using SceneMaker = std::function<Scene()>;
 /// scene started; stages after the budget is spent are skipped. Both are noted in the row.
 BenchRow benchScene(const std::string& name, const std::string& kind, const SceneMaker& make,
                     const BenchOptions& options);
+
+/// Adds to `row` the radiosity of `litPath`, the lit variant of a level (loaded as `radiosity`
+/// loads it: cut at contacts; no patch-count limit, the solver clusters), and its comparison with
+/// a light tracer of options.photons photons. A leak fails the row; the L2 and the worst region
+/// are figures (issue #18's targets: 5 %, 15 %). Its own budget of maxSeconds.
+void benchLitLevel(const std::string& litPath, const BenchOptions& options, BenchRow& row);
 
 /// Adds the leaf PVS of the portal file `prtPath` to `row` (its own budget of maxSeconds).
 void benchPvs(const std::string& prtPath, const BenchOptions& options, BenchRow& row);

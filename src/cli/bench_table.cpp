@@ -98,6 +98,10 @@ std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
       {"VISIBLE", "--:", [](const BenchRow& r) { return countCell(r.pairsVisible); }},
       {"PARTIAL", "--:", [](const BenchRow& r) { return countCell(r.pairsPartial); }},
       {"mean blockers", "--:", [](const BenchRow& r) { return cell(r.meanBlockers, "{:.2f}"); }},
+      {"excess", "--:",
+       [](const BenchRow& r) {
+         return cell(r.excess ? std::optional<double>(100 * *r.excess) : std::nullopt, "{:.1f} %");
+       }},
       {"vis hash", "---", [&](const BenchRow& r) { return hash(r.visHash); }}};
   if (radiosity) {
     columns.push_back({"radiosity s", "--:", [](const BenchRow& r) {
@@ -118,6 +122,22 @@ std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
                        }});
     columns.push_back(
         {"radiosity hash", "---", [&](const BenchRow& r) { return hash(r.radiosityHash); }});
+  }
+  const bool photons = std::any_of(rows.begin(), rows.end(),
+                                   [](const BenchRow& r) { return r.photonL2.has_value(); });
+  if (photons) {
+    auto percent = [](const std::optional<double>& v, const char* format) {
+      return cell(v ? std::optional<double>(100 * *v) : std::nullopt, format);
+    };
+    columns.push_back({"L2 of B−Ke vs photons",
+                       "--:", [=](const BenchRow& r) { return percent(r.photonL2, "{:.2f} %"); }});
+    columns.push_back(
+        {"leaks", "--:", [](const BenchRow& r) { return countCell(widen(r.leaks)); }});
+    columns.push_back({"worst region", "--:", [=](const BenchRow& r) {
+                         return percent(r.worstRegion, "{:+.1f} %");
+                       }});
+    columns.push_back(
+        {"photons s", "--:", [](const BenchRow& r) { return cell(r.photonSeconds, "{:.1f}"); }});
   }
   columns.push_back(
       {"PVS s", "--:", [](const BenchRow& r) { return cell(r.pvsSeconds, "{:.2f}"); }});
@@ -163,13 +183,18 @@ nlohmann::json benchRowJson(const BenchRow& r) {
         {"portals", orNull(r.portalSeconds)},
         {"visibility", orNull(r.visSeconds)},
         {"radiosity", orNull(r.radiositySeconds)},
-        {"pvs", orNull(r.pvsSeconds)}}},
+        {"pvs", orNull(r.pvsSeconds)},
+        {"photons", orNull(r.photonSeconds)}}},
       {"cells", orNull(r.cells)},
       {"portals", orNull(r.portals)},
       {"pairs_listed", orNull(r.pairsListed)},
       {"pairs_visible", orNull(r.pairsVisible)},
       {"pairs_partial", orNull(r.pairsPartial)},
       {"mean_blockers_per_partial", orNull(r.meanBlockers)},
+      {"excess", orNull(r.excess)},
+      {"photon_l2_reflected", orNull(r.photonL2)},
+      {"photon_leak_surfaces", orNull(r.leaks)},
+      {"photon_worst_region", orNull(r.worstRegion)},
       {"radiosity_links", orNull(r.radiosityLinks)},
       {"radiosity_interactions", orNull(r.radiosityInteractions)},
       {"radiosity_rays", orNull(r.radiosityRays)},

@@ -1,6 +1,7 @@
-// `globalvis bench`: the pipeline over a size sweep of generated offices and the shared Quake
-// maps (paper §7's measurements on this machine), every stage's result checked before its time
-// counts; prints a table with a hash of each result and can refresh docs/BENCHMARKS.md.
+// `globalvis bench`: the pipeline over a size sweep of generated offices, the shared Quake maps
+// and the shared OBJ levels (paper §7's measurements on this machine), every stage's result checked
+// before its time counts; prints a table with a hash of each result and can refresh
+// docs/BENCHMARKS.md.
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "cli/bench_table.h"
 #include "cli/commands.h"
 #include "cli/output_files.h"
+#include "cli/scene_input.h"
 #include "generators/office.h"
 #include "quake/map_to_scene.h"
 #include "util/input_error.h"
@@ -29,6 +31,11 @@ constexpr size_t kQuickOffices = 2;
 /// PVS take minutes); --all-maps runs every .map in the directory.
 const char* const kDefaultMaps[] = {"qbspfeatures", "light_general", "E1M1-edited-ents"};
 constexpr size_t kQuickMaps = 2;
+
+/// The level run by --quick (the smallest of the shared set: a second of `vis`).
+constexpr const char* kQuickLevel = "q3-oa_ctf2";
+/// A level's lit variant: this prefix before its file name (../shared/data/levels/README.md).
+constexpr const char* kLitPrefix = "lit-";
 
 /// The markers of the section --update-docs rewrites.
 constexpr const char* kDocsBegin = "<!-- bench:begin -->";
@@ -55,6 +62,26 @@ std::vector<std::filesystem::path> mapsToRun(const std::string& dir, bool all, b
   return maps;
 }
 
+/// The OBJ levels of `dir` to run: every .obj but the lit variants (a lit variant is the same
+/// geometry with emitters; it joins its level's row for radiosity), sorted; --quick: one.
+std::vector<std::filesystem::path> levelsToRun(const std::string& dir, bool quick,
+                                               bool explicitDir) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> levels;
+  if (!fs::is_directory(dir)) {
+    if (explicitDir) throw InputError(dir, 0, "not a directory of OBJ levels");
+    return levels;
+  }
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string stem = e.path().stem().string();
+    if (e.path().extension() == ".obj" && stem.rfind(kLitPrefix, 0) != 0 &&
+        (!quick || stem == kQuickLevel))
+      levels.push_back(e.path());
+  }
+  std::sort(levels.begin(), levels.end());
+  return levels;
+}
+
 std::string readWhole(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
@@ -68,27 +95,39 @@ std::string readWhole(const std::string& path) {
 Action addBenchCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench",
-      "Time the pipeline on a size sweep of generated offices and the shared Quake maps; "
+      "Time the pipeline on a size sweep of generated offices, the shared Quake maps and the "
+      "shared OBJ levels; "
       "check every result, print a table with result hashes, optionally refresh a "
       "markdown file's bench section. Exit code 1 when a check fails");
   struct State {
-    bool quick = false, allMaps = false, noMaps = false, noOffices = false, json = false;
+    bool quick = false, allMaps = false, noMaps = false, noOffices = false, noLevels = false,
+         json = false;
     std::vector<size_t> officePatches;
-    std::string maps = "../shared/data/quake", updateDocs;
+    std::string maps = "../shared/data/quake", levels = "../shared/data/levels", updateDocs;
     BenchOptions options;
   };
   auto s = std::make_shared<State>();
   cmd->add_flag("--quick", s->quick,
-                "Only the two smallest offices (~400 and ~1,000 patches) and the two smallest "
-                "maps (qbspfeatures, light_general)");
+                "Only the two smallest offices (~400 and ~1,000 patches), the two smallest "
+                "maps (qbspfeatures, light_general) and the smallest level (q3-oa_ctf2)");
   auto* mapsOption =
       cmd->add_option("--maps", s->maps, "Directory of Quake .map files (with their .prt)")
           ->capture_default_str();
   cmd->add_flag("--all-maps", s->allMaps,
                 "Every .map of the directory, not just the small ones (visibility and PVS of the "
                 "big ones take minutes: raise --max-seconds)");
-  cmd->add_flag("--no-maps", s->noMaps, "Only the generated offices");
-  cmd->add_flag("--no-offices", s->noOffices, "Only the maps");
+  auto* levelsOption =
+      cmd->add_option("--levels", s->levels,
+                      "Directory of OBJ levels: `vis` on each, and with --radiosity the "
+                      "radiosity of its lit- variant against light tracing (--photons)")
+          ->capture_default_str();
+  cmd->add_flag("--no-maps", s->noMaps, "No Quake maps");
+  cmd->add_flag("--no-offices", s->noOffices, "No generated offices");
+  cmd->add_flag("--no-levels", s->noLevels, "No OBJ levels");
+  cmd->add_option("--photons", s->options.photons,
+                  "Photons of the light-tracing reference of each lit level (--radiosity)")
+      ->capture_default_str()
+      ->check(CLI::Range(uint64_t{1000}, uint64_t{1'000'000'000}));
   cmd->add_option("--office-patches", s->officePatches,
                   "Patch counts of the offices instead of the sweep 400 1000 3000 10000")
       ->check(CLI::Range(size_t{1}, size_t{10'000'000}));
@@ -109,7 +148,7 @@ Action addBenchCommand(CLI::App& app) {
                   "Markdown file whose bench section (between <!-- bench:begin --> and "
                   "<!-- bench:end -->, appended if missing) gets the table, machine and date");
   cmd->add_flag("--json", s->json, "Print the results as JSON on stdout instead of the table");
-  return [s, mapsOption] {
+  return [s, mapsOption, levelsOption] {
     std::vector<BenchRow> rows;
     std::vector<size_t> sweep = s->officePatches;
     if (sweep.empty())
@@ -134,6 +173,22 @@ Action addBenchCommand(CLI::App& app) {
         if (std::filesystem::exists(prt)) benchPvs(prt.string(), s->options, row);
         rows.push_back(std::move(row));
         if (!s->json) fmt::print(stderr, "bench: {} done\n", map.stem().string());
+      }
+    }
+    if (!s->noLevels) {
+      for (const auto& level : levelsToRun(s->levels, s->quick, levelsOption->count() > 0)) {
+        const std::string path = level.string();
+        BenchOptions visOnly = s->options;
+        visOnly.radiosity = false;  // the unlit geometry has no emitter: its lit variant's turn
+        BenchRow row = benchScene(
+            level.stem().string(), "level",
+            [path] { return loadPipelineScene(path, SceneInputOptions{}); }, visOnly);
+        const std::filesystem::path lit =
+            level.parent_path() / (kLitPrefix + level.filename().string());
+        if (s->options.radiosity && std::filesystem::exists(lit))
+          benchLitLevel(lit.string(), s->options, row);
+        rows.push_back(std::move(row));
+        if (!s->json) fmt::print(stderr, "bench: {} done\n", level.stem().string());
       }
     }
 

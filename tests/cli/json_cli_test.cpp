@@ -129,7 +129,7 @@ TEST(JsonCli, PvsStatsMatchTheWrittenRows) {
 }
 
 TEST(BenchCli, SmallOfficeIsCheckedAndHashedTheSameTwice) {
-  const std::string args = "bench --no-maps --office-patches 150 --json";
+  const std::string args = "bench --no-maps --no-levels --office-patches 150 --json";
   const json a = runJson(args), b = runJson(args);
   expectKeys(a, {"machine", "date", "ok", "scenes"});
   EXPECT_EQ(a["ok"], true);
@@ -151,7 +151,8 @@ TEST(BenchCli, MapRowHasItsPvs) {
   const auto dir = test::scratchDir();
   std::filesystem::copy_file(kQuakeDir + "qbspfeatures.map", dir / "qbspfeatures.map");
   std::filesystem::copy_file(kQuakeDir + "qbspfeatures.prt", dir / "qbspfeatures.prt");
-  const json j = runJson("bench --no-offices --all-maps --maps " + quoted(dir) + " --json");
+  const json j =
+      runJson("bench --no-offices --no-levels --all-maps --maps " + quoted(dir) + " --json");
   ASSERT_EQ(j["scenes"].size(), 1u);
   const json& s = j["scenes"][0];
   EXPECT_EQ(s["scene"], "qbspfeatures");
@@ -164,7 +165,8 @@ TEST(BenchCli, ABadMapFailsItsRowAndTheExitCode) {
   const auto dir = test::scratchDir();
   test::writeFile(dir / "broken.map", "{\n\"classname\" \"worldspawn\"\n{\n( 0 0 0 ) ( 1 0 0 )\n");
   std::filesystem::copy_file(kQuakeDir + "qbspfeatures.prt", dir / "broken.prt");
-  const json j = runJson("bench --no-offices --all-maps --maps " + quoted(dir) + " --json", 1);
+  const json j =
+      runJson("bench --no-offices --no-levels --all-maps --maps " + quoted(dir) + " --json", 1);
   EXPECT_EQ(j["ok"], false);
   ASSERT_EQ(j["scenes"].size(), 1u);
   const json& s = j["scenes"][0];
@@ -174,13 +176,46 @@ TEST(BenchCli, ABadMapFailsItsRowAndTheExitCode) {
   EXPECT_NE(s["failures"][0].get<std::string>().find("broken.map:"), std::string::npos)
       << s["failures"];
   // Text mode says so too.
-  const auto text = test::runCli("bench --no-offices --all-maps --maps " + quoted(dir));
+  const auto text = test::runCli("bench --no-offices --no-levels --all-maps --maps " + quoted(dir));
   EXPECT_EQ(text.exitCode, 1);
   EXPECT_NE(text.output.find("FAILED"), std::string::npos) << text.output;
 }
 
+TEST(BenchCli, LevelRowHasItsLitVariantsRadiosityAgainstPhotons) {
+  // A directory laid out as ../shared/data/levels: a level and its lit- variant (here the
+  // Cornell box for both: small, and lit either way).
+  const auto dir = test::scratchDir();
+  ASSERT_EQ(test::runCli("gen cornell -o " + quoted(dir / "box.obj")).exitCode, 0);
+  std::filesystem::copy_file(dir / "box.obj", dir / "lit-box.obj");
+  const json j = runJson("bench --no-offices --no-maps --levels " + quoted(dir) +
+                         " --radiosity --photons 300000 --json");
+  EXPECT_EQ(j["ok"], true) << j.dump(1);
+  ASSERT_EQ(j["scenes"].size(), 1u);  // the lit variant joins its level's row
+  const json& s = j["scenes"][0];
+  EXPECT_EQ(s["scene"], "box");
+  EXPECT_EQ(s["kind"], "level");
+  EXPECT_FALSE(s["pairs_listed"].is_null());
+  ASSERT_FALSE(s["excess"].is_null());
+  EXPECT_GE(s["excess"].get<double>(), 0.0);
+  EXPECT_LE(s["excess"].get<double>(), 0.5);  // a box: nearly every listed pair sees
+  ASSERT_FALSE(s["photon_l2_reflected"].is_null());
+  EXPECT_LT(s["photon_l2_reflected"].get<double>(), 0.05);  // issue #18's level target
+  EXPECT_EQ(s["photon_leak_surfaces"], 0);
+  EXPECT_FALSE(s["seconds"]["photons"].is_null());
+  const auto checks = s["checks_passed"].get<std::vector<std::string>>();
+  EXPECT_NE(std::find(checks.begin(), checks.end(), "no leak against 300000 photons"), checks.end())
+      << s["checks_passed"];
+  // Without --radiosity: the level's visibility only.
+  const json v = runJson("bench --no-offices --no-maps --levels " + quoted(dir) + " --json");
+  EXPECT_TRUE(v["scenes"][0]["photon_l2_reflected"].is_null());
+  // A directory that is not there, named: an input error, not an empty table.
+  EXPECT_NE(test::runCli("bench --no-offices --no-maps --levels " + quoted(dir / "nope")).exitCode,
+            0);
+}
+
 TEST(BenchCli, BudgetSkipsStagesAndSaysSo) {
-  const json j = runJson("bench --no-maps --office-patches 150 --max-seconds 1e-9 --json");
+  const json j =
+      runJson("bench --no-maps --no-levels --office-patches 150 --max-seconds 1e-9 --json");
   const json& s = j["scenes"][0];
   EXPECT_TRUE(s["seconds"]["visibility"].is_null());
   ASSERT_FALSE(s["notes"].empty());
@@ -192,7 +227,8 @@ TEST(BenchCli, UpdateDocsRewritesOnlyItsSection) {
   const auto dir = test::scratchDir();
   const auto md = dir / "BENCH.md";
   test::writeFile(md, "# Benchmarks\n\nHand-written text.\n");
-  const std::string args = "bench --no-maps --office-patches 150 --update-docs " + quoted(md);
+  const std::string args =
+      "bench --no-maps --no-levels --office-patches 150 --update-docs " + quoted(md);
   ASSERT_EQ(test::runCli(args).exitCode, 0);
   ASSERT_EQ(test::runCli(args).exitCode, 0);
   const std::string text = test::readFile(md);
