@@ -184,12 +184,13 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
   try {
     ProgressBar bar(name + ": BSP");
     BspOptions bsp;
-    bsp.minCoverage = options.minCoverage;
+    if (options.minCoverage) bsp.minCoverage = *options.minCoverage;
     bsp.progress = [&](double f) {
       bar.update(f);
       if (budget.spent()) throw BudgetExceeded{};
     };
-    sub = buildSubdivision(scene, bsp);
+    sub = options.minCoverage ? buildSubdivision(scene, bsp)
+                              : buildVisibilitySubdivision(scene, bsp);  // as `vis` builds
   } catch (const BudgetExceeded&) {
     row.notes.push_back(overBudget("BSP", budget));
     return row;

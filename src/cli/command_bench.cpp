@@ -137,8 +137,8 @@ Action addBenchCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--min-coverage", s->options.minCoverage,
-                  "BSP stop rule (see `globalvis cells --help`); the default is `vis`'s")
-      ->capture_default_str()
+                  "BSP stop rule (see `globalvis cells --help`); by default `vis`'s choice, the "
+                  "coarsest of its steps whose cells follow the scene")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--radiosity", s->options.radiosity,
                 "Also solve radiosity (rays visibility, 16 rays per link, the default --quality)");

@@ -9,8 +9,8 @@
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "cli/commands.h"
-#include "cli/scene_input.h"
 #include "cli/output_files.h"
+#include "cli/scene_input.h"
 #include "util/input_error.h"
 #include "util/progress_bar.h"
 

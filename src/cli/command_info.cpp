@@ -43,9 +43,10 @@ void printInfo(const std::string& path, const Scene& s) {
   fmt::print("contacts     {} patches cut along patches resting on them, into {} pieces\n",
              r.splitAtContacts, r.contactPieces);
   fmt::print("dropped      {} degenerate faces\n", r.droppedDegenerate);
-  fmt::print("hidden       {} patches inside closed solids or covered by same-facing twins "
-             "dropped ({} twins), {} partly hidden kept whole\n",
-             r.hiddenDropped + r.coincidentDropped, r.coincidentDropped, r.partlyHiddenKept);
+  fmt::print(
+      "hidden       {} patches inside closed solids or covered by same-facing twins "
+      "dropped ({} twins), {} partly hidden kept whole\n",
+      r.hiddenDropped + r.coincidentDropped, r.coincidentDropped, r.partlyHiddenKept);
   fmt::print("materials    {}\n", s.materials.size());
   fmt::print("emitters     {} patches\n", s.emitterCount());
   fmt::print("bounds       ({:g}, {:g}, {:g}) to ({:g}, {:g}, {:g}), size {:g} x {:g} x {:g}\n",
