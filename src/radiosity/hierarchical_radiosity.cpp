@@ -61,6 +61,7 @@ struct Tap {
   float intoA = 0;       ///< tap.a gathers intoA · B(tap.fromB): F_ab · share · A_a / A_tap.a
   float intoB = 0;       ///< tap.b gathers intoB · B(tap.fromA)
   StoredPoint atA, atB;  ///< the sample's ends, where fromA and fromB are re-found once cut further
+  float share = 0;       ///< the sample's share of its link: how deep a receiver may go (makeLink)
 };
 
 /// A link to make between elements a and b, refining a link whose oracle state was `tube`;
@@ -331,7 +332,7 @@ class Solver {
         taps.push_back({ta, tb, sa, sb,
                         static_cast<float>(fab * c.weight * ea.area / tree_[ta].area),
                         static_cast<float>(fba * c.weight * eb.area / tree_[tb].area),
-                        StoredPoint(c.from), StoredPoint(c.to)});
+                        StoredPoint(c.from), StoredPoint(c.to), static_cast<float>(share)});
       }
     }
     return link;
@@ -975,9 +976,24 @@ class Solver {
     auto descend = [&](uint32_t& source, const StoredPoint& at) {
       if (!tree_[source].isLeaf()) source = tree_.deepestContaining(source, at.point());
     };
-    parallelForEach(taps_.size(), [&](size_t t) {
-      descend(taps_[t].fromA, taps_[t].atA);
-      descend(taps_[t].fromB, taps_[t].atB);
+    // The receivers likewise, down to pieces of the sample's share of the link's end (makeLink's
+    // rule), the coefficient rescaled to the new receiver's area: the light lands where the
+    // sample ended, not spread over the coarser element it was made on.
+    auto land = [&](uint32_t& receiver, float& into, const StoredPoint& at, double minArea) {
+      if (tree_[receiver].isLeaf()) return;
+      const uint32_t deeper = tree_.deepestContaining(receiver, at.point(), minArea);
+      into = static_cast<float>(into * tree_[receiver].area / tree_[deeper].area);
+      receiver = deeper;
+    };
+    parallelForEach(links_.size(), [&](size_t i) {
+      const Link& l = links_[i];
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        Tap& tap = taps_[t];
+        land(tap.a, tap.intoA, tap.atA, tree_[l.a].area * tap.share);
+        land(tap.b, tap.intoB, tap.atB, tree_[l.b].area * tap.share);
+        descend(tap.fromA, tap.atA);
+        descend(tap.fromB, tap.atB);
+      }
     });
     parallelForEach(clusterTaps_.size(),
                     [&](size_t t) { descend(clusterTaps_[t].source, clusterTaps_[t].at); });
