@@ -37,6 +37,11 @@ constexpr uint8_t kFromS = 1, kFromT = 2;
 /// candidate; flags need a pass over seen(T) to set and one to clear).
 constexpr size_t kFlagsPerSearch = 4;
 
+/// Up to this many patches, every seen list is also kept as a row of bits (n² bits: 32 MiB at
+/// the limit), so that "seen from R" is one bit per candidate instead of a pass over seen(R) per
+/// pair to set flags and one to clear them.
+constexpr size_t kMaxSeenBitsPatches = 16384;
+
 /// A chunk whose id array grew past this (16 MiB) gives it back after the hand-over instead of
 /// keeping it for reuse.
 constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
@@ -120,6 +125,15 @@ class BlockerDetection {
     // s holds positions [seenStart[s], seenStart[s + 1]), and its pairs (s, t) come from them.
     seenStart_.assign(n + 1, 0);
     for (size_t p = 0; p < n; ++p) seenStart_[p + 1] = seenStart_[p] + seen[p].seen.size();
+    if (n <= kMaxSeenBitsPatches) {
+      seenWords_ = (n + 63) / 64;
+      seenBits_.assign(n * seenWords_, 0);
+      for (size_t p = 0; p < n; ++p)
+        for (uint32_t e : seen[p].seen) {
+          const uint32_t c = seenPatch(e);
+          seenBits_[p * seenWords_ + (c >> 6)] |= uint64_t{1} << (c & 63);
+        }
+    }
   }
 
   size_t patchCount() const { return n_; }
@@ -199,6 +213,17 @@ class BlockerDetection {
         w.gathered.data(), grid_->gatherInto(box, tol_.length(), w.gathered.data(), &hull));
     const auto& b = seen_[t].seen;
     sortIds(candidates, w.bits);  // blockers come out sorted
+    if (!seenBits_.empty()) {
+      const uint64_t* fromT = seenBits_.data() + size_t(t) * seenWords_;
+      for (uint32_t c : candidates) {
+        if (c == s || c == t) continue;
+        if (!w.seen[c] && !((fromT[c >> 6] >> (c & 63)) & 1)) continue;
+        const std::span<const Vec3> cv(vertices_.data() + vertexStart_[c],
+                                       vertices_.data() + vertexStart_[c + 1]);
+        if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) lists.addBlocker(c);
+      }
+      return;
+    }
     // Seen from T: by flags when there are many candidates to ask about (setting them costs a
     // pass over seen(T)), else by searches in the sorted seen(T).
     const bool flagT = candidates.size() * kFlagsPerSearch > b.size();
@@ -232,6 +257,8 @@ class BlockerDetection {
   std::vector<Vec3> normals_;
   std::vector<double> normalLengths_;
   std::vector<uint64_t> seenStart_;
+  size_t seenWords_ = 0;
+  std::vector<uint64_t> seenBits_;  ///< row p: the patches of seen(p), when n <= kMaxSeenBits…
 };
 
 /// Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
