@@ -258,7 +258,8 @@ class BlockerDetection {
   std::vector<double> normalLengths_;
   std::vector<uint64_t> seenStart_;
   size_t seenWords_ = 0;
-  std::vector<uint64_t> seenBits_;  ///< row p: the patches of seen(p), when n <= kMaxSeenBits…
+  /// Row p (seenWords_ words): the patches of seen(p); empty above kMaxSeenBitsPatches.
+  std::vector<uint64_t> seenBits_;
 };
 
 /// Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
