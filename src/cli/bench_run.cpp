@@ -121,20 +121,14 @@ std::string skipped(const std::string& stages, const Budget& b) {
   return fmt::format("{} skipped: {:g} s budget spent", stages, b.maxSeconds());
 }
 
-/// Embree's BVH of a scene, shared by a level's solve and its photon reference.
-std::unique_ptr<EmbreeScene> bvhOf(const Scene& scene) {
-  return std::make_unique<EmbreeScene>(scene);
-}
-
 /// Solves radiosity as `radiosity` does by default (rays visibility) and records its figures
 /// and checks in `row`; nullopt when the budget stopped it.
-std::optional<RadiosityResult> benchRadiosity(const Scene& scene,
-                                              const std::unique_ptr<EmbreeScene>& bvh,
+std::optional<RadiosityResult> benchRadiosity(const Scene& scene, const EmbreeScene& bvh,
                                               const BenchOptions& options, const Budget& budget,
                                               BenchRow& row) {
   try {
     ProgressBar bar(row.name + ": radiosity refinement");
-    RayVisibility visibility(scene, *bvh, kBenchRadiosityRays);
+    RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
     RadiosityOptions ro;
     applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
     ro.threads = options.threads;
@@ -258,7 +252,8 @@ BenchRow benchScene(const std::string& name, const std::string& kind, const Scen
     row.notes.push_back(skipped("radiosity", budget));
     return row;
   }
-  benchRadiosity(scene, bvhOf(scene), options, budget, row);
+  const EmbreeScene bvh(scene);
+  benchRadiosity(scene, bvh, options, budget, row);
   return row;
 }
 
@@ -277,13 +272,13 @@ void benchLitLevel(const std::string& litPath, const BenchOptions& options, Benc
     row.notes.push_back(fmt::format("{}: no emitter, radiosity skipped", litPath));
     return;
   }
-  const std::unique_ptr<EmbreeScene> bvh = bvhOf(scene);
+  const EmbreeScene bvh(scene);  // shared by the solve and the photon reference
   const std::optional<RadiosityResult> result = benchRadiosity(scene, bvh, options, budget, row);
   if (!result) return;
   const auto t0 = Clock::now();
   PhotonOptions po;
   po.photons = options.photons;
-  const PhotonResult reference = photonReference(scene, *bvh, po);
+  const PhotonResult reference = photonReference(scene, bvh, po);
   row.photonSeconds = secondsSince(t0);
   // photons --compare's defaults: 4 standard errors plus 1 % per patch channel.
   const PhotonComparison c = comparePhotons(scene, result->patchRadiosity, reference, 4, 0.01);

@@ -31,10 +31,11 @@ struct BenchOptions {
   /// BSP stop rule; none: `vis`'s own choice (buildVisibilitySubdivision's steps).
   std::optional<double> minCoverage;
   int threads = 0;  ///< propagation and PVS threads (0 = all cores)
-  /// Light-tracing photons of a lit level's reference. 16 M: at 4 M a 0.25-unit floor strip at
-  /// the bottom of a 0.125-unit slot of lit-doom-fd2-map03, which the solution lights 4x too
-  /// bright, got no photon one run in ten (2.4 hits expected at its true value) and was flagged
-  /// as a leak; at 16 M it cannot pass for one.
+  /// Light-tracing photons of a lit level's reference. A leak is judged at >= 10 hits expected
+  /// at the solution's value: with few photons a dim patch the solution gets a few times too
+  /// bright draws none by chance (at 4 M, a floor strip at the bottom of a 0.125-unit slot of
+  /// lit-doom-fd2-map03, 2x too bright: 2.4 hits expected at its true value). 16 M keeps each
+  /// level's reference under ~8 s.
   uint64_t photons = 16'000'000;
 };
 
