@@ -971,8 +971,9 @@ class Solver {
   /// saw, through 5 clear samples, the dark overhanging end of a 205-unit ceiling whose lit end
   /// was cut into 240 leaves later, and gathered the whole ceiling's mean, 40x its end's
   /// radiosity (a patch lit where light tracing found none). So before each solve every tap's
-  /// source descends to the deepest element at its point.
-  void refreshTapSources() {
+  /// source descends to the deepest element at its point, and its receiver as deep as the rule
+  /// it was made with allows.
+  void refreshTaps() {
     auto descend = [&](uint32_t& source, const StoredPoint& at) {
       if (!tree_[source].isLeaf()) source = tree_.deepestContaining(source, at.point());
     };
@@ -1068,7 +1069,7 @@ class Solver {
   /// fixed order; the maxima are exact, so the solution does not depend on the thread count.
   bool solve(RefinementStats& round) {
     const auto t0 = Clock::now();
-    refreshTapSources();
+    refreshTaps();
     const GatherLists lists = gatherLists();
     const size_t patches = tree_.patchCount();
     std::vector<SweepChange> changes(patches);

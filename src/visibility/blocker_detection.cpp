@@ -213,30 +213,25 @@ class BlockerDetection {
         w.gathered.data(), grid_->gatherInto(box, tol_.length(), w.gathered.data(), &hull));
     const auto& b = seen_[t].seen;
     sortIds(candidates, w.bits);  // blockers come out sorted
-    if (!seenBits_.empty()) {
-      const uint64_t* fromT = seenBits_.data() + size_t(t) * seenWords_;
-      for (uint32_t c : candidates) {
-        if (c == s || c == t) continue;
-        if (!w.seen[c] && !((fromT[c >> 6] >> (c & 63)) & 1)) continue;
-        const std::span<const Vec3> cv(vertices_.data() + vertexStart_[c],
-                                       vertices_.data() + vertexStart_[c + 1]);
-        if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) lists.addBlocker(c);
-      }
-      return;
-    }
-    // Seen from T: by flags when there are many candidates to ask about (setting them costs a
-    // pass over seen(T)), else by searches in the sorted seen(T).
-    const bool flagT = candidates.size() * kFlagsPerSearch > b.size();
+    // Seen from T: a bit of its row when the rows are kept; else by flags when there are many
+    // candidates to ask about (setting them costs a pass over seen(T)), else by searches in the
+    // sorted seen(T).
+    const uint64_t* rowT = seenBits_.empty() ? nullptr : seenBits_.data() + size_t(t) * seenWords_;
+    const bool flagT = !rowT && candidates.size() * kFlagsPerSearch > b.size();
     if (flagT)
       for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
     auto fromT = b.begin();  // candidates rise: each search starts where the last ended
     for (uint32_t c : candidates) {
       if (c == s || c == t) continue;
-      if (flagT) {
-        if (!w.seen[c]) continue;
-      } else if (!w.seen[c]) {
-        fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
-        if (fromT == b.end() || seenPatch(*fromT) != c) continue;
+      if (!w.seen[c]) {  // not seen from S (nor, with flags, from T)
+        if (rowT) {
+          if (!((rowT[c >> 6] >> (c & 63)) & 1)) continue;
+        } else if (flagT) {
+          continue;
+        } else {
+          fromT = std::lower_bound(fromT, b.end(), seenEntry(c, 0));
+          if (fromT == b.end() || seenPatch(*fromT) != c) continue;
+        }
       }
       const std::span<const Vec3> cv(vertices_.data() + vertexStart_[c],
                                      vertices_.data() + vertexStart_[c + 1]);
