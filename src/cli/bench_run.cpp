@@ -280,17 +280,19 @@ void benchLitLevel(const std::string& litPath, const BenchOptions& options, Benc
   po.photons = options.photons;
   const PhotonResult reference = photonReference(scene, bvh, po);
   row.photonSeconds = secondsSince(t0);
-  // photons --compare's defaults: 4 standard errors plus 1 % per patch channel.
-  const PhotonComparison c = comparePhotons(scene, result->patchRadiosity, reference, 4, 0.01);
+  const PhotonComparison c =
+      comparePhotons(scene, result->patchRadiosity, reference, kDefaultSigmas, kDefaultAllowance);
   row.photonL2 = c.l2Reflected;
   row.leaks = c.leakSurfaces;
   if (c.worstRegion) row.worstRegion = c.worstRegion->relative;
+  row.regionsCompared = c.regionsCompared;
+  row.regionChannels = c.regionChannels;
   std::optional<std::string> leak;
   if (c.leakSurfaces > 0)
     leak = fmt::format(
-        "{} surfaces lit where light tracing expected >= 10 hits and got none "
+        "{} surfaces lit where light tracing expected >= {:g} hits and got none "
         "(patch {} first)",
-        c.leakSurfaces, c.worstLeaks.front().patch);
+        c.leakSurfaces, kLeakExpectedHits, c.worstLeaks.front().patch);
   record(row, fmt::format("no leak against {} photons", options.photons), leak);
 }
 

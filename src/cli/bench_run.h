@@ -60,6 +60,9 @@ struct BenchRow {
   /// the worst region's signed relative error, and the reference's time.
   std::optional<double> photonL2, worstRegion, photonSeconds;
   std::optional<size_t> leaks;
+  /// The region channels the worst region was taken over, of all occupied ones (the others are
+  /// noisy or hold under 0.1 % of the reflected power).
+  std::optional<size_t> regionsCompared, regionChannels;
   std::optional<size_t> pvsLeafs;
   std::optional<double> pvsMeanLeafs;
   std::string visHash, radiosityHash, pvsHash;  ///< FNV-1a, 16 hex digits; empty if not run

@@ -133,8 +133,12 @@ std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
                        "--:", [=](const BenchRow& r) { return percent(r.photonL2, "{:.2f} %"); }});
     columns.push_back(
         {"leaks", "--:", [](const BenchRow& r) { return countCell(widen(r.leaks)); }});
-    columns.push_back({"worst region", "--:", [=](const BenchRow& r) {
-                         return percent(r.worstRegion, "{:+.1f} %");
+    columns.push_back({"worst region (of compared)", "--:", [=](const BenchRow& r) {
+                         std::string text = percent(r.worstRegion, "{:+.1f} %");
+                         if (r.regionsCompared && r.regionChannels)
+                           text +=
+                               fmt::format(" ({} of {})", *r.regionsCompared, *r.regionChannels);
+                         return text;
                        }});
     columns.push_back(
         {"photons s", "--:", [](const BenchRow& r) { return cell(r.photonSeconds, "{:.1f}"); }});
@@ -195,6 +199,8 @@ nlohmann::json benchRowJson(const BenchRow& r) {
       {"photon_l2_reflected", orNull(r.photonL2)},
       {"photon_leak_surfaces", orNull(r.leaks)},
       {"photon_worst_region", orNull(r.worstRegion)},
+      {"photon_regions_compared", orNull(r.regionsCompared)},
+      {"photon_region_channels", orNull(r.regionChannels)},
       {"radiosity_links", orNull(r.radiosityLinks)},
       {"radiosity_interactions", orNull(r.radiosityInteractions)},
       {"radiosity_rays", orNull(r.radiosityRays)},

@@ -41,14 +41,19 @@ constexpr const char* kLitPrefix = "lit-";
 constexpr const char* kDocsBegin = "<!-- bench:begin -->";
 constexpr const char* kDocsEnd = "<!-- bench:end -->";
 
+/// Whether `dir` is a directory; when it is not, a default one is skipped quietly and one the
+/// user named is an input error ("not a directory of `what`").
+bool directoryToRead(const std::string& dir, bool explicitDir, const char* what) {
+  if (std::filesystem::is_directory(dir)) return true;
+  if (explicitDir) throw InputError(dir, 0, std::string("not a directory of ") + what);
+  return false;
+}
+
 std::vector<std::filesystem::path> mapsToRun(const std::string& dir, bool all, bool quick,
                                              bool explicitDir) {
   namespace fs = std::filesystem;
   std::vector<fs::path> maps;
-  if (!fs::is_directory(dir)) {
-    if (explicitDir) throw InputError(dir, 0, "not a directory of Quake .map files");
-    return maps;
-  }
+  if (!directoryToRead(dir, explicitDir, "Quake .map files")) return maps;
   if (all) {
     for (const auto& e : fs::directory_iterator(dir))
       if (e.path().extension() == ".map") maps.push_back(e.path());
@@ -68,10 +73,7 @@ std::vector<std::filesystem::path> levelsToRun(const std::string& dir, bool quic
                                                bool explicitDir) {
   namespace fs = std::filesystem;
   std::vector<fs::path> levels;
-  if (!fs::is_directory(dir)) {
-    if (explicitDir) throw InputError(dir, 0, "not a directory of OBJ levels");
-    return levels;
-  }
+  if (!directoryToRead(dir, explicitDir, "OBJ levels")) return levels;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string stem = e.path().stem().string();
     if (e.path().extension() == ".obj" && stem.rfind(kLitPrefix, 0) != 0 &&

@@ -147,7 +147,7 @@ Action addPhotonsCommand(CLI::App& app) {
   struct State {
     std::string scene, output, compare, reference;
     PhotonOptions options;
-    double sigmas = 4, allowance = 0.01, regionSize = kDefaultRegionSize;
+    double sigmas = kDefaultSigmas, allowance = kDefaultAllowance, regionSize = kDefaultRegionSize;
     bool keepHidden = false;
     bool json = false, noContactSplit = false;
   };

@@ -26,6 +26,10 @@ constexpr double kLeakExpectedHits = 10;
 /// 96 map units, about a room's height (`--region-size`).
 constexpr double kDefaultRegionSize = 3;
 
+/// The per-patch tolerance `photons --compare` and `bench` judge with by default: this many
+/// photon standard errors plus this fraction of the value.
+constexpr double kDefaultSigmas = 4, kDefaultAllowance = 0.01;
+
 /// Region channels whose photon estimate has a relative standard error above this (or no photon
 /// at all) are left out of the worst region.
 constexpr double kMeaningfulRegionNoise = 0.05;
