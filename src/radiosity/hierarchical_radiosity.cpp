@@ -442,19 +442,27 @@ class Solver {
       // Cluster links whose bound now exceeds the threshold (the radiosities grew) are split;
       // the pairs of patches they reach join this round's links.
       updateClusterBrightness();
+      // The bounds in parallel (millions of cluster links on big scenes), then the links over
+      // the threshold taken out in order and the others kept in place.
+      std::vector<char> over(clusterLinks_.size());
+      parallelForEach(clusterLinks_.size(), [&](size_t i) {
+        const ClusterLink& c = clusterLinks_[i];
+        over[i] = clusterTransferBound((*clusters_)[c.x], (*clusters_)[c.y], clusterBright_[c.x],
+                                       clusterBright_[c.y]) > threshold_;
+      });
       std::vector<std::pair<uint32_t, uint32_t>> split;
-      std::vector<ClusterLink> kept;
-      for (const ClusterLink& c : clusterLinks_) {
-        if (clusterTransferBound((*clusters_)[c.x], (*clusters_)[c.y], clusterBright_[c.x],
-                                 clusterBright_[c.y]) > threshold_) {
+      size_t kept = 0;
+      for (size_t i = 0; i < clusterLinks_.size(); ++i) {
+        const ClusterLink& c = clusterLinks_[i];
+        if (over[i]) {
           split.emplace_back(c.x, c.y);
           ++round.linksRefined;
         } else {
-          kept.push_back(c);
+          clusterLinks_[kept++] = c;
         }
       }
+      clusterLinks_.resize(kept);
       if (!split.empty()) {
-        clusterLinks_ = std::move(kept);
         compactClusterTaps();
         std::vector<LinkJob> jobs;
         refineClusters(std::move(split), jobs);
@@ -897,30 +905,36 @@ class Solver {
     };
     std::vector<Missing> missing;
     for (uint32_t i = 0; i < links_.size(); ++i) {
-      Link& l = links_[i];
+      const Link& l = links_[i];
       if (l.tapCount > 0) continue;
-      for (const bool ofA : {true, false}) {
-        const uint32_t e = ofA ? l.a : l.b;
-        uint32_t& at = ofA ? l.sourcePiecesOfA : l.sourcePiecesOfB;
-        if (at != UINT32_MAX || tree_[e].isLeaf()) continue;
-        Missing m{i, ofA, {}};
-        std::vector<std::pair<uint32_t, uint32_t>> stack{{e, 0}};
-        while (!stack.empty()) {
-          const auto [x, depth] = stack.back();
-          stack.pop_back();
-          const Element& el = tree_[x];
-          if (el.isLeaf() || depth == kSourcePieceDepth) {
-            m.pieces.push_back(x);
-            continue;
-          }
-          for (uint32_t c = el.firstChild + el.childCount; c-- > el.firstChild;)
-            stack.emplace_back(c, depth + 1);
+      for (const bool ofA : {true, false})
+        if ((ofA ? l.sourcePiecesOfA : l.sourcePiecesOfB) == UINT32_MAX &&
+            !tree_[ofA ? l.a : l.b].isLeaf())
+          missing.push_back({i, ofA, {}});
+    }
+    // The pieces of each end in parallel (a walk down the tree per end, most of this pass's
+    // time on big scenes when it ran serially), then placed in link order.
+    parallelForEach(missing.size(), [&](size_t k) {
+      Missing& m = missing[k];
+      const Link& l = links_[m.link];
+      std::vector<std::pair<uint32_t, uint32_t>> stack{{m.ofA ? l.a : l.b, 0}};
+      while (!stack.empty()) {
+        const auto [x, depth] = stack.back();
+        stack.pop_back();
+        const Element& el = tree_[x];
+        if (el.isLeaf() || depth == kSourcePieceDepth) {
+          m.pieces.push_back(x);
+          continue;
         }
-        at = static_cast<uint32_t>(sourcePieces_.size());
-        sourcePieces_.push_back({static_cast<uint32_t>(m.pieces.size()), 0});
-        for (const uint32_t piece : m.pieces) sourcePieces_.push_back({piece, 0});
-        missing.push_back(std::move(m));
+        for (uint32_t c = el.firstChild + el.childCount; c-- > el.firstChild;)
+          stack.emplace_back(c, depth + 1);
       }
+    });
+    for (const Missing& m : missing) {
+      Link& l = links_[m.link];
+      (m.ofA ? l.sourcePiecesOfA : l.sourcePiecesOfB) = static_cast<uint32_t>(sourcePieces_.size());
+      sourcePieces_.push_back({static_cast<uint32_t>(m.pieces.size()), 0});
+      for (const uint32_t piece : m.pieces) sourcePieces_.push_back({piece, 0});
     }
     parallelForEach(missing.size(), [&](size_t k) {
       const Missing& m = missing[k];
