@@ -149,7 +149,10 @@ size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out,
         const bool hit = (a.lo.x <= b.hi.x + e) & (b.lo.x <= a.hi.x + e) & (a.lo.y <= b.hi.y + e) &
                          (b.lo.y <= a.hi.y + e) & (a.lo.z <= b.hi.z + e) & (b.lo.z <= a.hi.z + e);
         out[count] = ids_[i];
-        count += hit;
+        // With a hull, a box that one of its side planes separates holds no patch that can
+        // meet it (on a long diagonal pair most of the hull's box is outside the hull): the
+        // entry's own box is read here in order, instead of the patch's vertices later.
+        count += hit && !(hull && hull->separatesBox(b));
       }
     };
     for (int z = first[2]; z <= last[2]; ++z)
