@@ -9,6 +9,8 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/fast_atan2.h"
+
 namespace gv {
 namespace {
 
@@ -153,16 +155,22 @@ double spread(const ConvexPolygon& receiver, const ConvexPolygon& source, bool c
 double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Vec3> vertices) {
   double sum = 0;
   const size_t count = vertices.size();
+  if (count == 0) return 0;
+  // The innermost loop of every form factor: each vertex's offset is taken once, and the
+  // degeneracy test compares squares (no square roots but the one the angle needs).
+  const Vec3 first = vertices[0] - x;
+  Vec3 u = first;
   for (size_t i = 0; i < count; ++i) {
-    const Vec3 u = vertices[i] - x;
-    const Vec3 w = vertices[(i + 1) % count] - x;
+    const Vec3 w = i + 1 < count ? vertices[i + 1] - x : first;
     const Vec3 c = cross(u, w);
-    const double cl = length(c);
+    const double c2 = dot(c, c);
     // x on the edge's line: the edge subtends no solid angle (or x is on the edge itself, a set
-    // of measure zero that quadrature points never hit).
-    if (!(cl > 1e-15 * length(u) * length(w))) continue;
-    const double theta = std::atan2(cl, dot(u, w));
-    sum += theta * dot(n, c) / cl;
+    // of measure zero that quadrature points never hit). |c| > 1e-15 |u| |w|, squared.
+    if (c2 > 1e-30 * dot(u, u) * dot(w, w)) {
+      const double cl = std::sqrt(c2);
+      sum += fastAtan2(cl, dot(u, w)) * dot(n, c) / cl;
+    }
+    u = w;
   }
   return std::min(1.0, std::abs(sum) / (2.0 * std::numbers::pi));
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/fast_atan2.h"
+
 namespace gv {
 namespace {
 
@@ -16,7 +18,7 @@ double solidAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double la = length(a), lb = length(b), lc = length(c);
   const double det = dot(a, cross(b, c));
   const double den = la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la;
-  return 2 * std::atan2(det, den);
+  return 2 * fastAtan2(det, den);
 }
 
 }  // namespace
