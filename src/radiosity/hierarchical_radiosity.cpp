@@ -362,10 +362,16 @@ class Solver {
     if (l.status == VisibilityStatus::Visible) {
       boundA = std::max(l.variationA, uncertain * ba);
       boundB = std::max(l.variationB, uncertain * bb);
-    } else if (l.status == VisibilityStatus::Invisible) {
-      boundA = uncertain * ba;
-      boundB = uncertain * bb;
+    } else if (l.status == VisibilityStatus::Invisible && l.samples == 0) {
+      boundA = boundB = 0;  // proven: nothing passes, nothing to refine
     }
+    // Invisible by its samples (none got through): the whole unoccluded bound, as if one had. A
+    // smaller bound for "all blocked" than for "some clear" makes the decision to look again
+    // depend on the outcome: links between the two bounds were re-sampled (as children) when a
+    // ray got through and kept at 0 when none did, so light through gaps narrower than the
+    // samples was counted only in the outcomes that found it: expected (1 − (1 − p)^N) p F
+    // instead of p F. On the 10k office `rays` that was a mean bias of −4.2 % (−0.2 % now),
+    // on the default office −0.4 % (+0.15 %).
     LinkError e;
     // A partly visible source sends the mean radiosity of all of it, but only its visible part
     // counts, and that part may be the bright one (the floor of a lit room inside a floor patch
