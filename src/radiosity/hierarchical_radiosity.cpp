@@ -350,11 +350,10 @@ class Solver {
   LinkError linkError(const Link& l) const {
     const Element& ea = tree_[l.a];
     const Element& eb = tree_[l.b];
-    // A sampled visibility of 0 or 1 is uncertain: after N samples that all agree, the fraction
-    // missed can still be up to ~3 / N (the "rule of three", a 95 % bound). Without this term,
-    // links that happened to sample all clear or all blocked stop refining, and the solution is
-    // biased towards whichever extreme is more common (a desk under a ceiling patch that spans
-    // every room: 16 rays all land in other rooms, and the desk never sees its own ceiling).
+    // A sampled visibility of 1 is uncertain: after N samples that all came through, the
+    // fraction blocked can still be up to ~3 / N (the "rule of three", a 95 % bound). Without
+    // this term, links that happened to sample all clear stop refining. (All blocked is just as
+    // uncertain, and gets the whole bound: see below.)
     const double uncertain =
         l.samples == 0 ? 0.0 : std::min(1.0, kSampleBound / static_cast<double>(l.samples));
     const double ba = l.unoccludedAB, bb = l.unoccludedAB * ea.area / eb.area;
