@@ -141,8 +141,9 @@ size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out,
       first[k] = coordinate(l, k, lo[k] - l.cellSize * (1 + kCellRounding));
       last[k] = coordinate(l, k, hi[k]);
     }
-    // Entries [begin, end) scanned without branches (each id written, the count advanced on a
-    // hit: hits are unpredictable). The comparisons are PairHull's box test.
+    // Entries [begin, end) scanned with each id written and the count advanced on a hit (hits
+    // are unpredictable): no branch but the hull's test, made only for boxes that pass. The
+    // comparisons are PairHull's box test.
     auto scan = [&](uint32_t begin, uint32_t end) {
       for (uint32_t i = begin; i < end; ++i) {
         const Aabb& b = boxes_[i];
