@@ -56,6 +56,12 @@ Action addVisCommand(CLI::App& app) {
                   "yet explored are answered with every patch they might reach (0 = no limit; "
                   "conservative either way)")
       ->capture_default_str();
+  cmd->add_option("--target-checks", s->propagation.cellTargetChecks,
+                  "Target checks in the cell-to-cell search (as `pvs --target-checks`): portals "
+                  "tested to narrow a search's might-see set, as a fraction of its sequences "
+                  "(0 = none)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--contact-split", s->contactSplit,

@@ -33,7 +33,9 @@ constexpr size_t kResultLag = 16;
 struct DirectedPortal {
   Winding winding;
   int from = 0, to = 0;
-  Vec3 normal;                          // unit, direction of travel (zero if degenerate)
+  Vec3 normal;  // unit, direction of travel (zero if degenerate)
+  Vec3 center;  // a ball holding the winding (target checks)
+  double radius = 0;
   double minOffset = 0, maxOffset = 0;  // the slab of normal·x its vertices span
 };
 
@@ -65,6 +67,11 @@ Graph buildGraph(const PortalGraph& graph) {
         d.minOffset = std::min(d.minOffset, dot(d.normal, v));
         d.maxOffset = std::max(d.maxOffset, dot(d.normal, v));
       }
+      d.center = Vec3{};
+      for (const Vec3& v : d.winding) d.center += v;
+      if (!d.winding.empty()) d.center = d.center / double(d.winding.size());
+      for (const Vec3& v : d.winding) d.radius = std::max(d.radius, length(v - d.center));
+      d.radius = d.radius * (1 + 1e-9) + 1e-9 * g.tol.length();  // room for rounding
       g.outgoing[d.from].push_back(static_cast<int>(g.portals.size()));
       g.portals.push_back(std::move(d));
     }
@@ -164,10 +171,11 @@ struct SearchInputs {
 // One thread's search state.
 struct Searcher {
   Searcher(const SearchInputs& in, size_t cells, const StabbingOptions& options,
-           uint64_t sequenceBudget)
+           uint64_t sequenceBudget, double targetCheckRatio)
       : g(in.g),
         inputs(in),
         maxSequences(sequenceBudget),
+        targetRatio(targetCheckRatio),
         stabber(in.g.tol, options),
         visible(cells),
         found(cells),
@@ -179,6 +187,10 @@ struct Searcher {
   const uint64_t maxSequences;  // per search; 0: no limit (CellPvsOptions::maxSequencesPerSearch)
   uint64_t budgetEnd = 0;       // the search stops once `sequences` passes this
   bool overBudget = false;      // the current search ran out of budget (see visitExit)
+  const double targetRatio;     // CellPvsOptions::targetCheckRatio
+  uint64_t searchStart = 0;     // `sequences` when the current search began
+  uint64_t targetTests = 0;     // portals tested by the current search's target checks
+  uint64_t targetTestsTotal = 0, targetCellsDropped = 0;
   uint64_t searchesOverBudget = 0;
   // Results of directed portals ranked below this are used (see SearchInputs).
   size_t usableRanks = 0;
@@ -242,6 +254,9 @@ struct Searcher {
     });
     path.assign(1, p.from);
     overBudget = false;
+    searchStart = sequences;
+    targetTestsTotal += targetTests;
+    targetTests = 0;
     budgetEnd = maxSequences ? sequences + maxSequences : UINT64_MAX;
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
@@ -259,6 +274,7 @@ struct Searcher {
   // branch is pruned only when everything it might reach is already visible), but reaching new
   // cells early lets more later branches be pruned.
   void recurse(int cell, size_t depth) {
+    if (depth >= 2 && targetRatio > 0) checkTargets(frames[depth]);
     // (`laterExits` grows in the calls below: it is indexed anew each time.)
     while (laterExits.size() <= depth) laterExits.emplace_back();
     laterExits[depth].clear();
@@ -271,6 +287,26 @@ struct Searcher {
     }
     for (size_t k = 0; k < laterExits[depth].size(); ++k)
       if (!visitExit(cell, depth, laterExits[depth][k])) return;
+  }
+
+  // Target checks: drops from `frame` (the might-see set of the current sequence) the cells
+  // off the path with no portal a line of the sequence can pass through, when the budget for
+  // them allows (ratio of portals tested to sequences pushed, counting this check's portals
+  // before it is made, as `vis` does). Depends only on the search's own counts: deterministic.
+  void checkTargets(CellSet& frame) {
+    const uint64_t expected = frame.count();
+    if (double(sequences - searchStart) * targetRatio < double(targetTests + expected)) return;
+    frame.forEach([&](size_t y) {
+      if (onPath[y] || visible.contains(y)) return;
+      // The portals into y are the reverses of its exits: the same points.
+      for (int qi : g.outgoing[y]) {
+        ++targetTests;
+        const DirectedPortal& q = g.portals[qi];
+        if (stabber.mayCrossLater(q.winding, q.center, q.radius)) return;
+      }
+      frame.erase(y);
+      ++targetCellsDropped;
+    });
   }
 
   // One step of recurse: the branch through portal `ri` of `cell`; false when the cell's own
@@ -396,7 +432,8 @@ void runSearches(const Graph& g, const std::vector<CellSet>& flood, const Search
   std::vector<Searcher> searchers;
   searchers.reserve(threads);
   for (size_t t = 0; t < threads; ++t)
-    searchers.emplace_back(inputs, cells, options.stabbing, options.maxSequencesPerSearch);
+    searchers.emplace_back(inputs, cells, options.stabbing, options.maxSequencesPerSearch,
+                           options.targetCheckRatio);
   std::atomic<size_t> next{0}, finished{0};
   std::atomic<bool> stop{false};
   size_t reported = 0;  // the last count given to options.progress (from the calling thread)
@@ -463,6 +500,8 @@ void runSearches(const Graph& g, const std::vector<CellSet>& flood, const Search
     result.stabbing += s.stabber.stats();
     result.sequencesSearched += s.sequences;
     result.searchesOverBudget += s.searchesOverBudget;
+    result.targetTests += s.targetTestsTotal + s.targetTests;
+    result.targetCellsDropped += s.targetCellsDropped;
     for (auto [from, to] : {std::pair{&s.successes, &result.successesByLength},
                             std::pair{&s.failures, &result.failuresByLength}}) {
       if (to->size() < from->size()) to->resize(from->size(), 0);

@@ -57,6 +57,13 @@ struct CellPvsOptions {
   /// conservative, looser, bounded. On real levels some portals' sequences fan out
   /// combinatorially (thin cells under long sightlines); one such search could run for minutes.
   uint64_t maxSequencesPerSearch = 0;
+  /// Target checks (`vis`'s -targetchecks): a search entering a cell may first drop from its
+  /// might-see set the cells into which no line of the current portal sequence can pass
+  /// (PortalSequenceStabber::mayCrossLater on each portal into them), so that branches left
+  /// with nothing new to find are pruned. Spent while the portals tested stay below this
+  /// fraction of the sequences the search has pushed (0: never). Only cells no sightline of
+  /// the sequence reaches are dropped, so the cells found are the same.
+  double targetCheckRatio = 100;
 };
 
 struct CellPvsResult {
@@ -74,6 +81,9 @@ struct CellPvsResult {
   uint64_t sequencesSearched = 0;  ///< portal sequences pushed by the searches
   /// Directed-portal searches that ran out of CellPvsOptions::maxSequencesPerSearch.
   uint64_t searchesOverBudget = 0;
+  /// Portals tested by target checks (CellPvsOptions::targetCheckRatio), and the might-see
+  /// entries they dropped.
+  uint64_t targetTests = 0, targetCellsDropped = 0;
   /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
   std::vector<uint64_t> successesByLength, failuresByLength;
   /// Per directed portal (2i: portal i from back into front; 2i+1: the way back), the

@@ -122,6 +122,7 @@ void cellPvsVisibility(const Subdivision& sub, int threads, const PropagationOpt
   pvsOptions.bothSides = true;
   pvsOptions.parallel = threads > 1;
   pvsOptions.maxSequencesPerSearch = options.cellSequenceBudget;
+  pvsOptions.targetCheckRatio = options.cellTargetChecks;
   // Between waves of the search: progress, and the deadline (a wave is short).
   pvsOptions.progress = [&](size_t done, size_t total) {
     if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)

@@ -18,6 +18,10 @@ namespace gv {
 /// Defaults of PropagationOptions' search budgets.
 inline constexpr uint64_t kDefaultCellSequenceBudget = 500;
 inline constexpr uint64_t kDefaultPatchSequenceBudget = 5000;
+/// Off by default in `vis`: on its budgeted searches over thin BSP cells (doom-fd1-e1m2, 2
+/// threads) ratio 0.5 / 2 / 5 / 100 listed 15.74 / 15.61 / 15.52 / 13.66 % of pairs instead of
+/// 15.77 %, for a cell stage of 3.5 / 3.8 / 5.2 / 14.8 s instead of 3.3 s (docs/BENCHMARKS.md).
+inline constexpr double kDefaultCellTargetChecks = 0;
 
 struct PropagationOptions {
   /// Threads for the per-source searches (1 = serial). The output does not depend on it.
@@ -51,6 +55,8 @@ struct PropagationOptions {
   /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget.
   uint64_t cellSequenceBudget = kDefaultCellSequenceBudget;
   uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;
+  /// The cell search's target checks (CellPvsOptions::targetCheckRatio; 0: none).
+  double cellTargetChecks = kDefaultCellTargetChecks;
 };
 
 /// The conservative visibility graph of `scene` over its subdivision:

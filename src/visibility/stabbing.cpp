@@ -201,6 +201,11 @@ void PortalSequenceStabber::describe(Level& level, std::span<const Vec3> portal,
   newell = newellNormal(portal);
   degenerate = isDegenerate(portal, newell, tol_);
   if (degenerate) ++stats_.degeneratePortals;
+  level.hasPlane = !degenerate;
+  if (!degenerate) {
+    level.planeNormal = normalize(newell);
+    level.planeMin = minDot(level.planeNormal, portal);
+  }
 }
 
 StabbingResult PortalSequenceStabber::pushFirst(Level& level, std::span<const Vec3> portal) {
@@ -262,6 +267,36 @@ bool PortalSequenceStabber::clipByEarlierPortals(Level& level, Level& prev) {
     }
   }
   return !level.clipped.empty();
+}
+
+bool PortalSequenceStabber::mayCrossLater(std::span<const Vec3> portal, const Vec3& center,
+                                          double radius) {
+  if (depth_ < 2) return true;
+  Level& top = levels_[depth_ - 1];
+  const double slack = tol_.length();
+  // The portal is copied and clipped only once a plane cuts through its ball; before that (and
+  // after, since the clipped part stays in the ball) a plane with the ball wholly behind it
+  // rejects the portal, and one with the ball wholly in front is passed.
+  bool copied = false;
+  auto keep = [&](const Vec3& unitNormal, double offset) {
+    const double d = dot(unitNormal, center) - (offset - slack);
+    if (d >= radius) return true;
+    if (d < -radius) return false;
+    if (!copied) target_.assign(portal.begin(), portal.end()), copied = true;
+    clipInPlace(target_, unitNormal, offset, slack, dist_, scratch_);
+    return !target_.empty();
+  };
+  if (!firstDegenerate_ && !keep(normal_, firstMinOffset_)) return false;
+  if (top.hasPlane && !keep(top.planeNormal, top.planeMin)) return false;
+  for (size_t k = 0;;) {
+    if (k == top.separators.size()) {
+      if (top.separatorCursor.done()) return true;
+      appendNextSeparators(top.source, top.clipped, top.separatorCursor, top.separators);
+      continue;
+    }
+    const ClipPlane& plane = top.separators[k++];
+    if (!keep(plane.unitNormal, plane.offset)) return false;
+  }
 }
 
 bool PortalSequenceStabber::clipFirstPortal(Level& level, const Level& prev, const Vec3& newell,

@@ -125,6 +125,18 @@ class PortalSequenceStabber {
   bool isTopBlocked() const { return depth_ > 0 && levels_[depth_ - 1].blocked; }
   /// Removes the last portal pushed (the sequence must not be empty).
   void pop();
+  /// Whether a stabbing line of the current sequence may cross `portal` anywhere after the last
+  /// portal (next, or further on through other portals): false only when clipping proves that
+  /// none does. Such a line is in front of the first and the last portal's planes there, and on
+  /// the pass's side of every separating plane of (first, last) (the lemma of
+  /// portal_clipping.h holds for every point of the line beyond the pass), so the portal is
+  /// clipped by those planes, as a pushed one is. `vis`'s "target checks": a search may drop
+  /// from its might-see set the cells none of whose portals any line can cross. Always true for
+  /// sequences of fewer than two portals. Reads and extends the last level's separators only.
+  /// `center` and `radius`: a ball holding every vertex of the portal with some room for
+  /// rounding (cell_pvs.cpp: 1e-9 of the radius and of the length tolerance): planes it lies
+  /// beyond or within decide without a clip.
+  bool mayCrossLater(std::span<const Vec3> portal, const Vec3& center, double radius);
   /// Empties the sequence (keeps statistics).
   void clear();
   /// Number of portals in the sequence.
@@ -154,7 +166,12 @@ class PortalSequenceStabber {
     std::vector<ClipPlane> separators;
     SeparatorCursor separatorCursor;  // how far `separators` has been found (lazily)
     bool lpPending = false;           // the LP solve was deferred (deferLp)
-    bool blocked = false;             // the deferred solve proved the sequence blocked
+    // The portal's plane as a slab (unit Newell normal, least offset of its vertices); a
+    // degenerate portal has none.
+    bool hasPlane = false;
+    Vec3 planeNormal{};
+    double planeMin = 0;
+    bool blocked = false;  // the deferred solve proved the sequence blocked
   };
 
   // Parts of push: the portal's own data (level.original, its Newell normal, degeneracy), the
@@ -195,6 +212,7 @@ class PortalSequenceStabber {
   bool firstDegenerate_ = false;
   double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
+  Winding target_;  // mayCrossLater's clipped portal
   std::vector<double> dist_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;

@@ -147,6 +147,38 @@ TEST(StabbingHand, CorridorAroundACornerIsBlocked) {
     EXPECT_NE(run(shorter, o), StabbingResult::Blocked);
 }
 
+// Target checks (mayCrossLater), worked by hand: lines through x = 1 and x = 2 (y, z in [0, 1])
+// reach x = 5 at y = 4b - 3a for a, b in [0, 1], i.e. y in [-3, 4] (z likewise).
+TEST(StabbingHand, MayCrossLaterKeepsWhatLinesReachAndDropsTheRest) {
+  PortalSequenceStabber s(kTol);
+  auto mayCross = [&s](const Winding& w) {
+    Vec3 c{};
+    for (const Vec3& v : w) c += v;
+    c = c / double(w.size());
+    double r = 0;
+    for (const Vec3& v : w) r = std::max(r, length(v - c));
+    return s.mayCrossLater(w, c, r * (1 + 1e-9));
+  };
+  const Winding far = rectX(5, 10, 11, 0, 1);
+  ASSERT_NE(s.push(rectX(1, 0, 1, 0, 1)), StabbingResult::Blocked);
+  EXPECT_TRUE(mayCross(far));  // one portal: nothing to clip by yet
+  ASSERT_NE(s.push(rectX(2, 0, 1, 0, 1)), StabbingResult::Blocked);
+  EXPECT_TRUE(mayCross(rectX(5, 0, 1, 0, 1)));          // straight ahead
+  EXPECT_TRUE(mayCross(rectX(5, 3.5, 4.5, 0, 1)));      // its lower part is reached (y <= 4)
+  EXPECT_TRUE(mayCross(rectX(5, 3.9, 4.5, 3.9, 4.5)));  // the corner y = z = 4 is reached
+  EXPECT_FALSE(mayCross(rectX(5, 4.1, 5, 0, 1)));       // just beyond y = 4
+  EXPECT_FALSE(mayCross(far));
+  EXPECT_FALSE(mayCross(rectX(0.5, 0, 1, 0, 1)));  // behind the first portal
+  EXPECT_FALSE(mayCross(rectX(1.5, 0, 1, 0, 1)));  // between the two: behind the last portal
+  // A side door in the wall y = -3.5 beyond the pass: the lowest line, y = 2 - x (from y = 1 at
+  // x = 1 to y = 0 at x = 2), reaches it at x = 5.5.
+  EXPECT_TRUE(mayCross(rectY(-3.5, 4.5, 6, 0, 1)));
+  EXPECT_FALSE(mayCross(rectY(-3.5, 2.5, 4, 0, 1)));
+  // The ball is only a shortcut: a huge one decides nothing wrongly.
+  EXPECT_FALSE(s.mayCrossLater(far, Vec3{5, 10.5, 0.5}, 100));
+  EXPECT_TRUE(s.mayCrossLater(rectX(5, 0, 1, 0, 1), Vec3{5, 0.5, 0.5}, 100));
+}
+
 TEST(StabbingHand, UpThenDownIsBlocked) {
   // Up through the floor of a cell, out through its side, down through the next cell's floor.
   // The first two share an edge, so no plane separates them and clipping alone cannot decide;
