@@ -42,6 +42,9 @@ struct DirectedPortal {
 struct Graph {
   std::vector<DirectedPortal> portals;
   std::vector<std::vector<int>> outgoing;  // per cell, directed portals leaving it
+  // Per cell, a ball holding all its portals (target checks reject a cell's portals at once).
+  std::vector<Vec3> cellCenter;
+  std::vector<double> cellRadius;
   Tolerance tol;
 };
 
@@ -75,6 +78,21 @@ Graph buildGraph(const PortalGraph& graph) {
       g.outgoing[d.from].push_back(static_cast<int>(g.portals.size()));
       g.portals.push_back(std::move(d));
     }
+  }
+  // A cell's ball: about the mean of its portals' centres, out to the farthest portal ball.
+  g.cellCenter.assign(graph.cellCount, Vec3{});
+  g.cellRadius.assign(graph.cellCount, 0.0);
+  for (size_t c = 0; c < graph.cellCount; ++c) {
+    const std::vector<int>& out = g.outgoing[c];
+    if (out.empty()) continue;
+    Vec3 center{};
+    for (int pi : out) center += g.portals[pi].center;
+    center = center / double(out.size());
+    double radius = 0;
+    for (int pi : out)
+      radius = std::max(radius, length(g.portals[pi].center - center) + g.portals[pi].radius);
+    g.cellCenter[c] = center;
+    g.cellRadius[c] = radius * (1 + 1e-9) + 1e-9 * g.tol.length();  // room for rounding
   }
   return g;
 }
@@ -180,7 +198,8 @@ struct Searcher {
         visible(cells),
         found(cells),
         settled(cells),
-        onPath(cells, 0) {}
+        onPath(cells, 0),
+        lastCrossed(cells, 0) {}
 
   const Graph& g;
   const SearchInputs& inputs;
@@ -200,6 +219,8 @@ struct Searcher {
   // seen. A settled cell is still passed through, only nothing is looked for on its account.
   CellSet visible, found, settled;
   std::vector<char> onPath;
+  // Per cell, the index (in its exits) of the portal its last target check found crossable.
+  std::vector<uint32_t> lastCrossed;
   std::vector<CellSet> frames;               // might-see set per depth
   std::vector<int> path;                     // the cells before the current one, source first
   std::vector<std::vector<int>> laterExits;  // per depth, the portals recurse visits second
@@ -257,6 +278,9 @@ struct Searcher {
     searchStart = sequences;
     targetTestsTotal += targetTests;
     targetTests = 0;
+    // Per search, so that what a search tests never depends on the searches before it on this
+    // thread (the throttle counts tests): the output is the same on any number of threads.
+    std::fill(lastCrossed.begin(), lastCrossed.end(), 0);
     budgetEnd = maxSequences ? sequences + maxSequences : UINT64_MAX;
     recurse(p.to, 1);
     onPath[p.from] = onPath[p.to] = 0;
@@ -298,11 +322,24 @@ struct Searcher {
     if (double(sequences - searchStart) * targetRatio < double(targetTests + expected)) return;
     frame.forEach([&](size_t y) {
       if (onPath[y] || visible.contains(y)) return;
-      // The portals into y are the reverses of its exits: the same points.
-      for (int qi : g.outgoing[y]) {
+      // All of y's portals at once when one plane has the ball of them behind it.
+      ++targetTests;
+      if (!stabber.mayCrossLater({}, g.cellCenter[y], g.cellRadius[y])) {
+        frame.erase(y);
+        ++targetCellsDropped;
+        return;
+      }
+      // The portals into y are the reverses of its exits: the same points. The one that let
+      // y through last time first: it usually does again, deeper on the same path.
+      const std::vector<int>& exits = g.outgoing[y];
+      const size_t n = exits.size(), first = lastCrossed[y] < n ? lastCrossed[y] : 0;
+      for (size_t k = 0, i = first; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
         ++targetTests;
-        const DirectedPortal& q = g.portals[qi];
-        if (stabber.mayCrossLater(q.winding, q.center, q.radius)) return;
+        const DirectedPortal& q = g.portals[exits[i]];
+        if (stabber.mayCrossLater(q.winding, q.center, q.radius)) {
+          lastCrossed[y] = static_cast<uint32_t>(i);
+          return;
+        }
       }
       frame.erase(y);
       ++targetCellsDropped;

@@ -282,6 +282,7 @@ bool PortalSequenceStabber::mayCrossLater(std::span<const Vec3> portal, const Ve
     const double d = dot(unitNormal, center) - (offset - slack);
     if (d >= radius) return true;
     if (d < -radius) return false;
+    if (portal.empty()) return true;  // the ball alone: a plane through it rejects nothing
     if (!copied) target_.assign(portal.begin(), portal.end()), copied = true;
     clipInPlace(target_, unitNormal, offset, slack, dist_, scratch_);
     return !target_.empty();

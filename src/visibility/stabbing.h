@@ -135,7 +135,8 @@ class PortalSequenceStabber {
   /// sequences of fewer than two portals. Reads and extends the last level's separators only.
   /// `center` and `radius`: a ball holding every vertex of the portal with some room for
   /// rounding (cell_pvs.cpp: 1e-9 of the radius and of the length tolerance): planes it lies
-  /// beyond or within decide without a clip.
+  /// beyond or within decide without a clip. With `portal` empty only the ball is tested (false
+  /// when one plane has all of it behind: then no portal inside it can be crossed).
   bool mayCrossLater(std::span<const Vec3> portal, const Vec3& center, double radius);
   /// Empties the sequence (keeps statistics).
   void clear();
