@@ -50,8 +50,9 @@ Action addPvsCommand(CLI::App& app) {
                 "Find every leaf pair from both of its leafs and keep it only if both found it "
                 "(the tightest PVS, 0.1-0.6 % smaller; 3-45 % slower)");
   cmd->add_option("--target-checks", s->targetChecks,
-                  "Target checks (vis's -targetchecks): portals tested to narrow a search's "
-                  "might-see set, as a fraction of the sequences it pushed (0: none)")
+                  "Target checks (vis's -targetchecks): tests of the portals into the cells a "
+                  "search might see, to drop those no line can enter, at most this many per "
+                  "sequence pushed (default 100; 0: none)")
       ->check(CLI::Range(0.0, 100.0));
   return [s] {
     const auto t0 = Clock::now();

@@ -57,9 +57,9 @@ Action addVisCommand(CLI::App& app) {
                   "conservative either way)")
       ->capture_default_str();
   cmd->add_option("--target-checks", s->propagation.cellTargetChecks,
-                  "Target checks in the cell-to-cell search (as `pvs --target-checks`): portals "
-                  "tested to narrow a search's might-see set, as a fraction of its sequences "
-                  "(0 = none)")
+                  "Target checks in the cell-to-cell search (as `pvs --target-checks`): tests "
+                  "per sequence pushed spent on dropping cells no line can enter (0 = none: on "
+                  "thin BSP cells they cost more than they save)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");

@@ -208,7 +208,7 @@ struct Searcher {
   bool overBudget = false;      // the current search ran out of budget (see visitExit)
   const double targetRatio;     // CellPvsOptions::targetCheckRatio
   uint64_t searchStart = 0;     // `sequences` when the current search began
-  uint64_t targetTests = 0;     // portals tested by the current search's target checks
+  uint64_t targetTests = 0;     // tests made by the current search's target checks
   uint64_t targetTestsTotal = 0, targetCellsDropped = 0;
   uint64_t searchesOverBudget = 0;
   // Results of directed portals ranked below this are used (see SearchInputs).
@@ -314,9 +314,10 @@ struct Searcher {
   }
 
   // Target checks: drops from `frame` (the might-see set of the current sequence) the cells
-  // off the path with no portal a line of the sequence can pass through, when the budget for
-  // them allows (ratio of portals tested to sequences pushed, counting this check's portals
-  // before it is made, as `vis` does). Depends only on the search's own counts: deterministic.
+  // off the path with no portal a line of the sequence can pass through, when the allowance
+  // for them permits (tests made against sequences pushed, this check's cells counted as its
+  // cost before it is made, as `vis` counts its expected checks). Depends only on the search's
+  // own counts: deterministic.
   void checkTargets(CellSet& frame) {
     const uint64_t expected = frame.count();
     if (double(sequences - searchStart) * targetRatio < double(targetTests + expected)) return;
