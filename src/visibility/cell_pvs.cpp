@@ -198,6 +198,7 @@ struct Searcher {
         visible(cells),
         found(cells),
         settled(cells),
+        targetCandidates(cells),
         onPath(cells, 0),
         lastCrossed(cells, 0) {}
 
@@ -218,6 +219,7 @@ struct Searcher {
   // searches are all done and decided the pair), and their union: what the pruning counts as
   // seen. A settled cell is still passed through, only nothing is looked for on its account.
   CellSet visible, found, settled;
+  CellSet targetCandidates;  // checkTargets' cells to test
   std::vector<char> onPath;
   // Per cell, the index (in its exits) of the portal its last target check found crossable.
   std::vector<uint32_t> lastCrossed;
@@ -298,7 +300,7 @@ struct Searcher {
   // branch is pruned only when everything it might reach is already visible), but reaching new
   // cells early lets more later branches be pruned.
   void recurse(int cell, size_t depth) {
-    if (depth >= 2 && targetRatio > 0) checkTargets(frames[depth]);
+    if (depth >= 2 && targetRatio > 0) checkTargets(cell, frames[depth]);
     // (`laterExits` grows in the calls below: it is indexed anew each time.)
     while (laterExits.size() <= depth) laterExits.emplace_back();
     laterExits[depth].clear();
@@ -318,11 +320,19 @@ struct Searcher {
   // for them permits (tests made against sequences pushed, this check's cells counted as its
   // cost before it is made, as `vis` counts its expected checks). Depends only on the search's
   // own counts: deterministic.
-  void checkTargets(CellSet& frame) {
-    const uint64_t expected = frame.count();
+  // Only the unseen cells some exit of `cell` might lead to are tested: the others leave the
+  // branches below unchanged (each takes the intersection with its exit's might-see set).
+  void checkTargets(int cell, CellSet& frame) {
+    CellSet& candidates = targetCandidates;
+    candidates.clear();
+    for (int ri : g.outgoing[cell])
+      if (!onPath[g.portals[ri].to]) candidates.unite(might(ri));
+    if (!candidates.assignIntersectionHasNew(candidates, frame, visible)) return;
+    candidates.subtract(visible);
+    const uint64_t expected = candidates.count();
     if (double(sequences - searchStart) * targetRatio < double(targetTests + expected)) return;
-    frame.forEach([&](size_t y) {
-      if (onPath[y] || visible.contains(y)) return;
+    candidates.forEach([&](size_t y) {
+      if (onPath[y]) return;
       // All of y's portals at once when one plane has the ball of them behind it.
       ++targetTests;
       if (!stabber.mayCrossLater({}, g.cellCenter[y], g.cellRadius[y])) {

@@ -29,6 +29,10 @@ class CellSet {
   void unite(const CellSet& other) {
     for (size_t w = 0; w < words_.size(); ++w) words_[w] |= other.words_[w];
   }
+  /// this := this \ other (same size).
+  void subtract(const CellSet& other) {
+    for (size_t w = 0; w < words_.size(); ++w) words_[w] &= ~other.words_[w];
+  }
   /// this := a ∩ b (same size).
   void assignIntersection(const CellSet& a, const CellSet& b) {
     words_.resize(a.words_.size());
