@@ -274,18 +274,19 @@ bool PortalSequenceStabber::mayCrossLater(std::span<const Vec3> portal, const Ve
   if (depth_ < 2) return true;
   Level& top = levels_[depth_ - 1];
   const double slack = tol_.length();
-  // The portal is copied and clipped only once a plane cuts through its ball; before that (and
-  // after, since the clipped part stays in the ball) a plane with the ball wholly behind it
-  // rejects the portal, and one with the ball wholly in front is passed.
-  bool copied = false;
+  // One plane at a time, no clipping: the portal is rejected when all of it lies behind one
+  // plane (the ball first, then its vertices, with the clips' slack). A portal that only
+  // several planes together cut away is kept: weaker than clipping it in turn, but the clips
+  // cost more than the pruning they add (e3m4: 8 % more sequences searched, 8 % less time).
   auto keep = [&](const Vec3& unitNormal, double offset) {
-    const double d = dot(unitNormal, center) - (offset - slack);
+    const double limit = offset - slack;
+    const double d = dot(unitNormal, center) - limit;
     if (d >= radius) return true;
     if (d < -radius) return false;
     if (portal.empty()) return true;  // the ball alone: a plane through it rejects nothing
-    if (!copied) target_.assign(portal.begin(), portal.end()), copied = true;
-    clipInPlace(target_, unitNormal, offset, slack, dist_, scratch_);
-    return !target_.empty();
+    for (const Vec3& v : portal)
+      if (dot(unitNormal, v) - limit >= 0) return true;
+    return false;
   };
   if (!firstDegenerate_ && !keep(normal_, firstMinOffset_)) return false;
   if (top.hasPlane && !keep(top.planeNormal, top.planeMin)) return false;

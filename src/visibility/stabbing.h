@@ -126,17 +126,19 @@ class PortalSequenceStabber {
   /// Removes the last portal pushed (the sequence must not be empty).
   void pop();
   /// Whether a stabbing line of the current sequence may cross `portal` anywhere after the last
-  /// portal (next, or further on through other portals): false only when clipping proves that
+  /// portal (next, or further on through other portals): false only when one plane proves that
   /// none does. Such a line is in front of the first and the last portal's planes there, and on
   /// the pass's side of every separating plane of (first, last) (the lemma of
-  /// portal_clipping.h holds for every point of the line beyond the pass), so the portal is
-  /// clipped by those planes, as a pushed one is. `vis`'s "target checks": a search may drop
+  /// portal_clipping.h holds for every point of the line beyond the pass), so a portal wholly
+  /// behind one of those planes (by more than the clip slack) is not crossed. Each plane is
+  /// tried alone, without clipping the portal by the others: a portal only their intersection
+  /// excludes is kept (conservative). `vis`'s "target checks": a search may drop
   /// from its might-see set the cells none of whose portals any line can cross. Always true for
   /// sequences of fewer than two portals. Reads and extends the last level's separators only.
   /// `center` and `radius`: a ball holding every vertex of the portal with some room for
   /// rounding (cell_pvs.cpp: 1e-9 of the radius and of the length tolerance): planes it lies
-  /// beyond or within decide without a clip. With `portal` empty only the ball is tested (false
-  /// when one plane has all of it behind: then no portal inside it can be crossed).
+  /// beyond or within decide without the vertices. With `portal` empty only the ball is tested
+  /// (false when one plane has all of it behind: then no portal inside it can be crossed).
   bool mayCrossLater(std::span<const Vec3> portal, const Vec3& center, double radius);
   /// Empties the sequence (keeps statistics).
   void clear();
@@ -213,7 +215,6 @@ class PortalSequenceStabber {
   bool firstDegenerate_ = false;
   double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
-  Winding target_;  // mayCrossLater's clipped portal
   std::vector<double> dist_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;
