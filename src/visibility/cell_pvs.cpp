@@ -48,6 +48,12 @@ struct Graph {
   Tolerance tol;
 };
 
+// A ball radius grown so that the target checks' ball tests hold despite rounding (1e-9 of the
+// radius and of the length tolerance, far above the ~1e-16 relative error of a dot product).
+double withRoundingRoom(double radius, const Tolerance& tol) {
+  return radius * (1 + 1e-9) + 1e-9 * tol.length();
+}
+
 Graph buildGraph(const PortalGraph& graph) {
   Graph g;
   g.outgoing.resize(graph.cellCount);
@@ -74,7 +80,7 @@ Graph buildGraph(const PortalGraph& graph) {
       for (const Vec3& v : d.winding) d.center += v;
       if (!d.winding.empty()) d.center = d.center / double(d.winding.size());
       for (const Vec3& v : d.winding) d.radius = std::max(d.radius, length(v - d.center));
-      d.radius = d.radius * (1 + 1e-9) + 1e-9 * g.tol.length();  // room for rounding
+      d.radius = withRoundingRoom(d.radius, g.tol);
       g.outgoing[d.from].push_back(static_cast<int>(g.portals.size()));
       g.portals.push_back(std::move(d));
     }
@@ -92,7 +98,7 @@ Graph buildGraph(const PortalGraph& graph) {
     for (int pi : out)
       radius = std::max(radius, length(g.portals[pi].center - center) + g.portals[pi].radius);
     g.cellCenter[c] = center;
-    g.cellRadius[c] = radius * (1 + 1e-9) + 1e-9 * g.tol.length();  // room for rounding
+    g.cellRadius[c] = withRoundingRoom(radius, g.tol);
   }
   return g;
 }
@@ -204,13 +210,14 @@ struct Searcher {
 
   const Graph& g;
   const SearchInputs& inputs;
-  const uint64_t maxSequences;  // per search; 0: no limit (CellPvsOptions::maxSequencesPerSearch)
-  uint64_t budgetEnd = 0;       // the search stops once `sequences` passes this
-  bool overBudget = false;      // the current search ran out of budget (see visitExit)
-  const double targetRatio;     // CellPvsOptions::targetCheckRatio
-  uint64_t searchStart = 0;     // `sequences` when the current search began
-  uint64_t targetTests = 0;     // tests made by the current search's target checks
-  uint64_t targetTestsTotal = 0, targetCellsDropped = 0;
+  const uint64_t maxSequences;    // per search; 0: no limit (CellPvsOptions::maxSequencesPerSearch)
+  uint64_t budgetEnd = 0;         // the search stops once `sequences` passes this
+  bool overBudget = false;        // the current search ran out of budget (see visitExit)
+  const double targetRatio;       // CellPvsOptions::targetCheckRatio
+  uint64_t searchStart = 0;       // `sequences` when the current search began
+  uint64_t targetTests = 0;       // tests made by target checks, all searches of this thread
+  uint64_t targetTestsStart = 0;  // `targetTests` when the current search began
+  uint64_t targetCellsDropped = 0;
   uint64_t searchesOverBudget = 0;
   // Results of directed portals ranked below this are used (see SearchInputs).
   size_t usableRanks = 0;
@@ -278,8 +285,7 @@ struct Searcher {
     path.assign(1, p.from);
     overBudget = false;
     searchStart = sequences;
-    targetTestsTotal += targetTests;
-    targetTests = 0;
+    targetTestsStart = targetTests;
     // Per search, so that what a search tests never depends on the searches before it on this
     // thread (the throttle counts tests): the output is the same on any number of threads.
     std::fill(lastCrossed.begin(), lastCrossed.end(), 0);
@@ -330,7 +336,9 @@ struct Searcher {
     if (!candidates.assignIntersectionHasNew(candidates, frame, visible)) return;
     candidates.subtract(visible);
     const uint64_t expected = candidates.count();
-    if (double(sequences - searchStart) * targetRatio < double(targetTests + expected)) return;
+    if (double(sequences - searchStart) * targetRatio <
+        double(targetTests - targetTestsStart + expected))
+      return;
     candidates.forEach([&](size_t y) {
       if (onPath[y]) return;
       // All of y's portals at once when one plane has the ball of them behind it.
@@ -548,7 +556,7 @@ void runSearches(const Graph& g, const std::vector<CellSet>& flood, const Search
     result.stabbing += s.stabber.stats();
     result.sequencesSearched += s.sequences;
     result.searchesOverBudget += s.searchesOverBudget;
-    result.targetTests += s.targetTestsTotal + s.targetTests;
+    result.targetTests += s.targetTests;
     result.targetCellsDropped += s.targetCellsDropped;
     for (auto [from, to] : {std::pair{&s.successes, &result.successesByLength},
                             std::pair{&s.failures, &result.failuresByLength}}) {

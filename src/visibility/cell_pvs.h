@@ -63,8 +63,8 @@ struct CellPvsOptions {
   /// with nothing new to find are pruned. Spent while the tests made stay below this multiple
   /// of the sequences the search has pushed (0: never; at 100 they practically never stop).
   /// Only cells no sightline of the sequence reaches are dropped, so every cell a sightline
-  /// reaches is still found; the PVS can get smaller, since the clipping is exact for two
-  /// portals where the Plücker LP is a relaxation (E1M1: 164.09 -> 164.03 leafs).
+  /// reaches is still found; the PVS can get smaller, since the separating planes are exact
+  /// for two portals where the Plücker LP is a relaxation (E1M1: 164.09 -> 164.03 leafs).
   double targetCheckRatio = 100;
 };
 

@@ -218,8 +218,8 @@ StabbingResult PortalSequenceStabber::pushFirst(Level& level, std::span<const Ve
   invScale_ = 1.0 / scale_;
   firstDegenerate_ = degenerate;
   if (!degenerate) {
-    normal_ = normalize(newell);
-    firstMinOffset_ = minDot(normal_, portal);
+    normal_ = level.planeNormal;
+    firstMinOffset_ = level.planeMin;
     pivot_ = dominantAxis(normal_);
   } else {
     level.lpValid = false;  // no crossing direction to normalise by: nothing is provable
@@ -301,12 +301,11 @@ bool PortalSequenceStabber::mayCrossLater(std::span<const Vec3> portal, const Ve
   }
 }
 
-bool PortalSequenceStabber::clipFirstPortal(Level& level, const Level& prev, const Vec3& newell,
-                                            bool degenerate) {
+bool PortalSequenceStabber::clipFirstPortal(Level& level, const Level& prev, bool degenerate) {
   // Symmetrically, the line crosses the new portal's plane forward after crossing the first
   // portal: the first portal's useful part is behind that plane.
   if (!degenerate) {
-    const Vec3 n = normalize(newell);
+    const Vec3& n = level.planeNormal;  // set by describe() (not degenerate)
     clipInPlace(level.source, -n, -maxDot(n, level.original), tol_.length(), dist_, scratch_);
     if (level.source.empty()) {
       return false;
@@ -358,7 +357,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   bool degenerate = false;
   describe(level, portal, newell, degenerate);
   level.source.assign(prev.source.begin(), prev.source.end());
-  if (options_.clipBySeparatingPlanes && !clipFirstPortal(level, prev, newell, degenerate)) {
+  if (options_.clipBySeparatingPlanes && !clipFirstPortal(level, prev, degenerate)) {
     ++stats_.blockedByClipping;
     return StabbingResult::Blocked;
   }

@@ -177,13 +177,14 @@ class PortalSequenceStabber {
     bool blocked = false;  // the deferred solve proved the sequence blocked
   };
 
-  // Parts of push: the portal's own data (level.original, its Newell normal, degeneracy), the
-  // first portal of a sequence, the clipping of a later portal by the earlier ones (false: none
-  // of it is left), and the clipping of the first portal by a later one (false: none left).
+  // Parts of push: the portal's own data (level.original, its Newell normal, degeneracy, its
+  // plane), the first portal of a sequence, the clipping of a later portal by the earlier ones
+  // (false: none of it is left), and the clipping of the first portal by a later one (false: none
+  // left).
   void describe(Level& level, std::span<const Vec3> portal, Vec3& newell, bool& degenerate);
   StabbingResult pushFirst(Level& level, std::span<const Vec3> portal);
   bool clipByEarlierPortals(Level& level, Level& prev);
-  bool clipFirstPortal(Level& level, const Level& prev, const Vec3& newell, bool degenerate);
+  bool clipFirstPortal(Level& level, const Level& prev, bool degenerate);
   std::optional<StabbingResult> tryLpWithoutSolve(size_t index);
   StabbingResult solveLp(size_t index);
   bool linePoint(const Vec3& a, const Vec3& b, size_t rowEnd, LpVector& x) const;
