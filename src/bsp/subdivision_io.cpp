@@ -1,4 +1,5 @@
-// OBJ and JSON output of the subdivision for viewing and for the §7.1 figures.
+// OBJ, Quake PRT1 and JSON output of the subdivision for viewing, for Quake tools and for the §7.1
+// figures.
 #include "bsp/subdivision_io.h"
 
 #include <fmt/format.h>
@@ -60,6 +61,17 @@ void writePortalsObj(const Subdivision& sub, const std::string& path) {
     const Portal& p = sub.portals[k];
     fmt::print(f.get(), "g portal_{}_{}_{}\n", k, p.back, p.front);
     writePolygon(f.get(), p.polygon, next);
+  }
+  finish(f, path);
+}
+
+void writePortalsPrt(const Subdivision& sub, const std::string& path) {
+  File f = openForWriting(path);
+  fmt::print(f.get(), "PRT1\n{}\n{}\n", sub.cells.size(), sub.portals.size());
+  for (const Portal& p : sub.portals) {
+    fmt::print(f.get(), "{} {} {}", p.polygon.vertices.size(), p.back, p.front);
+    for (const Vec3& v : p.polygon.vertices) fmt::print(f.get(), " ({} {} {})", v.x, v.y, v.z);
+    fmt::print(f.get(), "\n");
   }
   finish(f, path);
 }

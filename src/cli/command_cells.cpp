@@ -1,5 +1,6 @@
 // `globalvis cells SCENE -o DIR`: the spatial subdivision (paper §3) for viewing, with the §7.1
-// figures: DIR/cells.obj, DIR/portals.obj, DIR/stats.json.
+// figures: DIR/cells.obj, DIR/portals.obj, DIR/stats.json, and the cell graph as a Quake portal
+// file, DIR/cells.prt (for `globalvis pvs` or Quake's `vis`).
 #include <fmt/core.h>
 
 #include <filesystem>
@@ -20,7 +21,8 @@ Action addCellsCommand(CLI::App& app) {
   auto* cmd =
       app.add_subcommand("cells",
                          "Build the BSP cells and portals of a scene (paper §3); write cells.obj, "
-                         "portals.obj and stats.json into a directory");
+                         "portals.obj, cells.prt (the cell graph as a Quake PRT1 portal file) "
+                         "and stats.json into a directory");
   struct State {
     std::string scene, output;
     BspOptions options;
@@ -51,6 +53,7 @@ Action addCellsCommand(CLI::App& app) {
     const std::filesystem::path dir = makeOutputDirectory(s->output);
     writeCellsObj(sub, (dir / "cells.obj").string());
     writePortalsObj(sub, (dir / "portals.obj").string());
+    writePortalsPrt(sub, (dir / "cells.prt").string());
     writeJsonFile(statsJson(sub.stats), dir / "stats.json");
     if (s->json) {
       nlohmann::json j = statsJson(sub.stats);
