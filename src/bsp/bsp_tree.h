@@ -30,7 +30,7 @@ inline constexpr double kVisibilityMinCoverage = 0.3;
 /// bsp/subdivision.h): on real levels no wall covers 0.3 of a section through many rooms, and the
 /// coarse rule leaves the level one cell (sector levels) or a few cells holding most of the
 /// surface (arena levels), where the searches then cull nothing.
-inline constexpr double kVisibilityCoverageSteps[] = {kVisibilityMinCoverage, 0.1, 0.03, 0.0};
+inline constexpr double kVisibilityCoverageSteps[] = {kVisibilityMinCoverage, 0.1, 0.03, 0.01, 0.0};
 
 /// Tuning of the BSP construction.
 struct BspOptions {

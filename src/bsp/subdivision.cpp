@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "bsp/portals.h"
 #include "util/timing.h"
@@ -84,13 +85,17 @@ Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
 }
 
 Subdivision buildVisibilitySubdivision(const Scene& scene, BspOptions options) {
-  Subdivision sub;
+  std::optional<Subdivision> kept;
   for (double coverage : kVisibilityCoverageSteps) {
     options.minCoverage = coverage;
-    sub = buildSubdivision(scene, options);
-    if (sub.stats.interiorAreaFraction <= kMaxInteriorAreaFraction) break;
+    Subdivision sub = buildSubdivision(scene, options);
+    if (kept && kept->stats.interiorAreaFraction <= kShatterInteriorAreaFraction &&
+        double(sub.stats.portals) > kMaxPortalsPerPatch * double(sub.stats.patches))
+      break;
+    kept = std::move(sub);
+    if (kept->stats.interiorAreaFraction <= kMaxInteriorAreaFraction) break;
   }
-  return sub;
+  return std::move(*kept);
 }
 
 }  // namespace gv

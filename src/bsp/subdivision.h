@@ -86,15 +86,32 @@ struct Subdivision {
 /// Throws std::invalid_argument for a scene without patches.
 Subdivision buildSubdivision(const Scene& scene, const BspOptions& options = {});
 
-/// Cells that leave more of the surface than this inside them do not follow the scene.
-inline constexpr double kMaxInteriorAreaFraction = 0.5;
+/// Cells that leave more of the surface than this inside them do not follow the scene. A patch
+/// inside a cell is invisible to the searches (they see through the cell), and on real levels
+/// the few such walls are the ones with the level's outside behind them, through which the
+/// searches then reach the whole void: measured 2026-12-03 (docs/BENCHMARKS.md), the sector
+/// levels at 14.5 % and 26 % inside listed 2-4x the pairs of the next finer rule (1-6 % inside)
+/// and took longer; E1M1.map at 27.7 % 50.5 s and 12.6 % of pairs, at 4.5 % 25.3 s and 4.7 %.
+/// The offices (3.9-5.7 % at the coarse rule) keep it.
+inline constexpr double kMaxInteriorAreaFraction = 0.0625;
+
+/// A finer rule that gives more portals than this per patch is not taken when the coarser one
+/// already leaves at most kShatterInteriorAreaFraction of the surface inside its cells (it is
+/// kept): splitting on every plane of an arena level fills its open space with slivers (measured:
+/// q3-oa_ctf2 at rule 0 made 13,938 portals for 1,313 patches and took 10 s against 0.9 s at
+/// 0.1; the sector levels and E1M1.map stay near 2-2.5 at every rule). A coarser rule that
+/// leaves more inside (one cell holding everything, say) is never kept for this reason.
+inline constexpr double kMaxPortalsPerPatch = 4.0;
+inline constexpr double kShatterInteriorAreaFraction = 0.5;
 
 /// `vis`'s cells: buildSubdivision with each stop rule of kVisibilityCoverageSteps in turn
 /// (`options.minCoverage` is not read), keeping the first whose cells hold at most
-/// kMaxInteriorAreaFraction of the patches' area inside them. The coarse rule suits buildings
-/// (the default office: 4 % inside, 0.04 s); real levels need the finer ones (measured: a sector
-/// level 100 % inside at 0.3 and 0.1; an arena level 84 % at 0.3, 5 % at 0.1, and 3x fewer pairs
-/// listed). Every build is cheap next to the searches; the progress callback sees each.
+/// kMaxInteriorAreaFraction of the patches' area inside them, or the last before one with more
+/// than kMaxPortalsPerPatch portals per patch if that one leaves at most
+/// kShatterInteriorAreaFraction inside. The coarse rule suits buildings (the default
+/// office: 4 % inside, 0.04 s); real levels need the finer ones (a sector level is one cell at
+/// 0.3 and 0.1; an arena level 84 % inside at 0.3, 5 % at 0.1). Every build is cheap next to the
+/// searches; the progress callback sees each.
 Subdivision buildVisibilitySubdivision(const Scene& scene, BspOptions options);
 
 }  // namespace gv
