@@ -18,9 +18,10 @@ void writeCellsObj(const Subdivision& sub, const std::string& path);
 void writePortalsObj(const Subdivision& sub, const std::string& path);
 
 /// Writes the cells and portals as a Quake portal file (PRT1: leaf i = cell i, each portal as
-/// `points back front (x y z) ...`, its winding's normal pointing from back into front, as qbsp
-/// writes front-to-back), so that `globalvis pvs` and Quake's `vis` tools can run on the cells
-/// of any scene. Throws InputError when the file cannot be written.
+/// `points back front (x y z) ...`, its winding's counter-clockwise normal pointing from the
+/// first cell into the second, as quake/prt_file.h reads qbsp's files), so that `globalvis pvs`
+/// and Quake's `vis` tools can run on the cells of any scene. Throws InputError when the file
+/// cannot be written.
 void writePortalsPrt(const Subdivision& sub, const std::string& path);
 
 /// The §7.1 figures: `patches`, `planes`, `bsp_nodes`, `bsp_depth`, `leaf_cells`, `portals`,
