@@ -1,29 +1,18 @@
 // The cell graph written as a Quake portal file (bsp/subdivision_io.h: writePortalsPrt): read back
-// by the project's own .prt reader it is the same graph, oriented as qbsp orients its portals, and
-// `globalvis pvs` runs on what `globalvis cells` writes.
+// by the project's own .prt reader it is the same graph, oriented as qbsp orients its portals.
+// (That `globalvis pvs` runs on what `globalvis cells` writes: subdivision_cli_test.cpp.)
 #include <gtest/gtest.h>
-
-#include <nlohmann/json.hpp>
 
 #include "bsp/bsp_scenes.h"
 #include "bsp/subdivision.h"
 #include "bsp/subdivision_io.h"
 #include "quake/prt_file.h"
-#include "support/run_cli.h"
 #include "support/temp_dir.h"
 
 namespace gv {
 namespace {
 
 using namespace bsptest;
-
-Vec3 centroid(const ConvexPolyhedron& shape) {
-  Vec3 sum{};
-  size_t n = 0;
-  for (const auto& face : shape.faces)
-    for (const Vec3& v : face.polygon.vertices) sum += v, ++n;
-  return sum / double(n);
-}
 
 TEST(PortalFile, ReadsBackAsTheSameGraphOrientedBackToFront) {
   const Scene scene = twoRoomsWithDoor();
@@ -49,29 +38,9 @@ TEST(PortalFile, ReadsBackAsTheSameGraphOrientedBackToFront) {
     for (size_t i = 0; i < q.winding.size(); ++i)
       n += cross(q.winding[i], q.winding[(i + 1) % q.winding.size()]);
     const Vec3& o = q.winding[0];
-    EXPECT_GT(dot(n, centroid(sub.cells[p.front].shape) - o), 0) << "portal " << k;
-    EXPECT_LT(dot(n, centroid(sub.cells[p.back].shape) - o), 0) << "portal " << k;
+    EXPECT_GT(dot(n, sub.cells[p.front].shape.centroid() - o), 0) << "portal " << k;
+    EXPECT_LT(dot(n, sub.cells[p.back].shape.centroid() - o), 0) << "portal " << k;
   }
-}
-
-TEST(PortalFile, CellsWritesOneThatPvsReads) {
-  const auto dir = test::scratchDir();
-  const std::string obj = (dir / "office.obj").string();
-  auto r = test::runCliStdout("gen office -o '" + obj + "'");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  r = test::runCliStdout("cells '" + obj + "' -o '" + (dir / "out").string() + "' --json");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  const auto cells = nlohmann::json::parse(r.output);
-  r = test::runCliStdout("pvs '" + (dir / "out" / "cells.prt").string() + "' -o '" +
-                         (dir / "pvs.txt").string() + "' --json");
-  ASSERT_EQ(r.exitCode, 0) << r.output;
-  const auto pvs = nlohmann::json::parse(r.output);
-  EXPECT_EQ(pvs.at("leafs").get<size_t>(), cells.at("leaf_cells").get<size_t>());
-  EXPECT_EQ(pvs.at("portals").get<size_t>(), cells.at("portals").get<size_t>());
-  // Sealed offices: no cell sees them all, every cell sees itself and a neighbour at least.
-  const double mean = pvs.at("mean_leafs_visible").get<double>();
-  EXPECT_GT(mean, 1.0);
-  EXPECT_LT(mean, 0.5 * cells.at("leaf_cells").get<double>());
 }
 
 }  // namespace

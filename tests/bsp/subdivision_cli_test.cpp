@@ -1,5 +1,5 @@
 // `globalvis cells SCENE -o DIR` end to end: files written, groups per cell and portal, the §7.1
-// figures in stats.json, bad input → exit 2.
+// figures in stats.json, a cells.prt that `globalvis pvs` reads, bad input → exit 2.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -39,6 +39,17 @@ TEST(SubdivisionCli, WritesCellsPortalsAndStats) {
   const std::string portalObj = test::readFile(dir / "out" / "portals.obj");
   EXPECT_EQ(countLines(portalObj, "g portal_"), portals);
   EXPECT_EQ(countLines(portalObj, "f "), portals);
+  // cells.prt: the same graph for `globalvis pvs` (its orientation: portal_file_test.cpp).
+  r = test::runCliStdout("pvs '" + (dir / "out" / "cells.prt").string() + "' -o '" +
+                         (dir / "pvs.txt").string() + "' --json");
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto pvs = nlohmann::json::parse(r.output);
+  EXPECT_EQ(pvs.at("leafs").get<size_t>(), cells);
+  EXPECT_EQ(pvs.at("portals").get<size_t>(), portals);
+  // Sealed offices: no cell sees them all, every cell sees itself and a neighbour at least.
+  const double mean = pvs.at("mean_leafs_visible").get<double>();
+  EXPECT_GT(mean, 1.0);
+  EXPECT_LT(mean, 0.5 * double(cells));
 }
 
 TEST(SubdivisionCli, MissingSceneIsBadInput) {
