@@ -52,6 +52,6 @@ current=""
 printf '\n== done ==\n'
 echo "Outputs in $out/: report.html (the paper's §7 figures beside this run's; open it in a browser),"
 echo "viewer.html (interactive: cells, portals, links, tubes and blockers), office.obj,"
-echo "cells/ (cells.obj, portals.obj, stats.json), vis/ (patches.obj, visibility.txt, stats.json),"
+echo "cells/ (cells.obj, portals.obj, cells.prt, stats.json), vis/ (patches.obj, visibility.txt, stats.json),"
 echo "radiosity/ (radiosity.txt, elements.ply, stats.json, render.png and the Fig. 14 link pictures),"
 echo "timings.json."
