@@ -25,10 +25,22 @@ struct BoundaryFace {
   std::vector<uint32_t> portals;
 };
 
-/// A leaf cell of the BSP: a convex polyhedron of air (or of a solid's inside).
-struct Cell {
+/// One convex piece of a cell merged from several (visibility/convex_merge.h).
+struct CellPart {
   ConvexPolyhedron shape;
-  std::vector<BoundaryFace> faces;  ///< parallel to shape.faces
+  std::vector<uint32_t> patches;  ///< as Cell::patches, for this piece
+};
+
+/// A leaf cell of the BSP: a convex polyhedron of air (or of a solid's inside). After
+/// mergeConvexCells a cell may also be a union of leaves: then `parts` lists them.
+struct Cell {
+  /// The cell, or (after mergeConvexCells) the convex hull of its leaves, which no patch enters;
+  /// unset (no faces) when `parts` is not empty.
+  ConvexPolyhedron shape;
+  /// Empty, or the convex leaves of a cell that is not convex (no patch faces into any of them:
+  /// visibility/convex_merge.h), each with its patches.
+  std::vector<CellPart> parts;
+  std::vector<BoundaryFace> faces;  ///< parallel to shape.faces (empty after mergeConvexCells)
   /// Patches inside the cell or on its boundary (coaffine with a face), sorted, no repeats.
   std::vector<uint32_t> patches;
   /// Patches lying inside the cell rather than on its boundary (left by the stop rule), sorted.
@@ -67,13 +79,19 @@ struct SubdivisionStats {
 /// them. Built by `buildSubdivision`.
 struct Subdivision {
   BspTree tree;
-  std::vector<Cell> cells;  ///< cell i is tree.leaves[i]
+  std::vector<Cell> cells;  ///< cell i is tree.leaves[i], unless leafCell says otherwise
   std::vector<Portal> portals;
   SubdivisionStats stats;
+  /// The cell holding each BSP leaf when cells were merged (bsp/convex_merge.h); empty when
+  /// cell i is leaf i.
+  std::vector<uint32_t> leafCell;
 
   /// The cell holding point p (by walking the BSP; a point on a boundary goes to one of its
   /// cells). p must be inside the root box.
-  uint32_t cellAt(const Vec3& p) const { return tree.leafAt(p); }
+  uint32_t cellAt(const Vec3& p) const {
+    const uint32_t leaf = tree.leafAt(p);
+    return leafCell.empty() ? leaf : leafCell[leaf];
+  }
   /// The distinct cells linked to `cell` by a portal, sorted.
   std::vector<uint32_t> neighbours(uint32_t cell) const;
 };

@@ -43,8 +43,8 @@ Action addVisCommand(CLI::App& app) {
   auto* coverage =
       cmd->add_option("--min-coverage", s->bsp.minCoverage,
                       "BSP stop rule (see `globalvis cells --help`); 0 splits on every patch "
-                      "plane. Default: the coarsest of 0.3, 0.1, 0.03, 0 whose cells hold at "
-                      "most half the patches' area inside them (bsp/subdivision.h)")
+                      "plane. Default: the coarsest of 0.3, 0.1, 0.03, 0.01, 0 whose cells hold "
+                      "at most 1/16 of the patches' area inside them (bsp/subdivision.h)")
           ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--cell-budget", s->propagation.cellSequenceBudget,
                   "Portal sequences one cell-to-cell search (one directed portal) may test; past "
@@ -62,6 +62,9 @@ Action addVisCommand(CLI::App& app) {
                   "thin BSP cells they cost more than they save)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  cmd->add_flag("--no-cell-merge{false}", s->propagation.mergeConvexCells,
+                "Search the BSP's cells as they are, without first merging neighbours whose "
+                "union is convex (exact either way; for measuring what the merge saves)");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--contact-split", s->contactSplit,
@@ -112,6 +115,10 @@ Action addVisCommand(CLI::App& app) {
         "cells; BSP {:.3f} s, portals {:.3f} s)\n",
         sub.stats.patches, sub.stats.cells, sub.stats.portals, sub.stats.minCoverage,
         100 * sub.stats.interiorAreaFraction, sub.stats.bspSeconds, sub.stats.portalSeconds);
+    if (v.cellsBeforeMerge != v.cells)
+      fmt::print(
+          "searched {} convex cells and {} portals (neighbours with a convex union merged)\n",
+          v.cells, v.portals);
     fmt::print("pairs listed {} of {:.0f} ({:.2f} %): VISIBLE {}, PARTIAL {} ({:.1f} %)\n", listed,
                pairs, pairs > 0 ? 100.0 * double(listed) / pairs : 0.0, v.pairsVisible,
                v.pairsPartial, listed ? 100.0 * double(v.pairsPartial) / double(listed) : 0.0);

@@ -63,6 +63,7 @@ Subdivision withoutDeadPortals(const Subdivision& sub, const LiveCells& live) {
   Subdivision out;
   out.tree = sub.tree;
   out.stats = sub.stats;
+  out.leafCell = sub.leafCell;
   constexpr uint32_t kDropped = UINT32_MAX;
   std::vector<uint32_t> renumber(sub.portals.size(), kDropped);
   for (size_t i = 0; i < sub.portals.size(); ++i) {

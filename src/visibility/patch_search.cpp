@@ -59,19 +59,29 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
   placements.resize(scene.patches.size());
   for (uint32_t c = 0; c < sub.cells.size(); ++c) {
     const Cell& cell = sub.cells[c];
-    const Vec3 inside = cell.shape.centroid();
-    for (uint32_t p : cell.patches) {
-      const ConvexPolygon& poly = scene.patches[p].polygon;
-      auto piece = clipToCell(poly, cell.shape, tol);
-      if (!piece) continue;
-      CellPatch cp;
-      cp.patch = p;
-      cp.interior = std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
-      cp.facesIn = poly.plane.distance(inside) > 0;
-      cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
-      cp.piece = std::move(*piece);
-      placements[p].emplace_back(c, cellPatches[c].size());
-      cellPatches[c].push_back(std::move(cp));
+    // A cell merged from several convex leaves is placed leaf by leaf (each piece faces in or out
+    // of its own leaf); a convex cell is its own single part.
+    auto place = [&](const ConvexPolyhedron& shape, const std::vector<uint32_t>& patches) {
+      const Vec3 inside = shape.centroid();
+      for (uint32_t p : patches) {
+        const ConvexPolygon& poly = scene.patches[p].polygon;
+        auto piece = clipToCell(poly, shape, tol);
+        if (!piece) continue;
+        CellPatch cp;
+        cp.patch = p;
+        cp.interior =
+            std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
+        cp.facesIn = poly.plane.distance(inside) > 0;
+        cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
+        cp.piece = std::move(*piece);
+        placements[p].emplace_back(c, cellPatches[c].size());
+        cellPatches[c].push_back(std::move(cp));
+      }
+    };
+    if (cell.parts.empty()) {
+      place(cell.shape, cell.patches);
+    } else {
+      for (const CellPart& part : cell.parts) place(part.shape, part.patches);
     }
   }
   return out;
@@ -119,7 +129,9 @@ class PatchSearch {
       stabber_.clear();
       if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
       sourcePiece_ = &cp.piece;
-      const bool cellEmpty = sub_.cells[cell].interiorPatches.empty();
+      // The shortcut needs a convex cell with nothing inside (a cell of parts is not convex).
+      const bool cellEmpty =
+          sub_.cells[cell].interiorPatches.empty() && sub_.cells[cell].parts.empty();
       if (cp.whole && cellEmpty) {
         for (const CellPatch& t : cellPatches_[cell])
           if (t.patch != s && t.whole && t.facesIn) result.sameCellVisible.push_back(t.patch);
@@ -244,7 +256,9 @@ class PatchSearch {
     for (uint32_t pid : sub_.cells[cell].portals) {
       const Portal& p = sub_.portals[pid];
       const uint32_t next = p.other(cell);
-      if (onPath_[next]) continue;  // a line cannot enter a convex cell twice
+      // A line cannot enter a convex cell twice; one that leaves a merged cell and comes back
+      // also takes the shorter sequence without the loop (convex_merge.h).
+      if (onPath_[next]) continue;
       const bool forward = p.front == next;
       const CellSet& through = might_.through(pid, forward);
       CellSet& nextReach = stack_[depth];

@@ -13,6 +13,7 @@
 #include "util/timing.h"
 #include "visibility/blocker_detection.h"
 #include "visibility/cell_visibility.h"
+#include "visibility/convex_merge.h"
 #include "visibility/live_cells.h"
 #include "visibility/patch_search.h"
 
@@ -26,6 +27,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
   const LiveCells live = findLiveCells(scene, input);
   std::optional<Subdivision> pruned;
   if (live.deadPortals > 0) pruned = withoutDeadPortals(input, live);
+  // Then open space cut into slabs by far-away planes becomes one cell again (convex_merge.h:
+  // exact, and the searches no longer try every order of the slabs).
+  if (options.mergeConvexCells) pruned = mergeConvexCells(scene, pruned ? *pruned : input);
   const Subdivision& sub = pruned ? *pruned : input;
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
@@ -38,7 +42,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
         fmt::format("visibility: {} patches, at most {} supported", n, kMaxPatches - 1));
   st.patches = n;
   st.cells = sub.cells.size();
-  st.portals = input.portals.size();
+  st.portals = sub.portals.size();
+  st.cellsBeforeMerge = input.cells.size();
+  st.portalsBeforeMerge = input.portals.size();
   st.deadCells = live.deadCells;
   st.deadPortals = live.deadPortals;
   st.threads = threads;

@@ -57,6 +57,9 @@ struct PropagationOptions {
   uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;
   /// The cell search's target checks (CellPvsOptions::targetCheckRatio; 0: none).
   double cellTargetChecks = kDefaultCellTargetChecks;
+  /// Merge adjacent cells whose union is convex before searching (bsp/convex_merge.h): exact,
+  /// and off only to measure what it saves.
+  bool mergeConvexCells = true;
 };
 
 /// The conservative visibility graph of `scene` over its subdivision:

@@ -131,6 +131,8 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"portals", s.portals},
       {"dead_cells", s.deadCells},
       {"dead_portals", s.deadPortals},
+      {"cells_before_merge", s.cellsBeforeMerge},
+      {"portals_before_merge", s.portalsBeforeMerge},
       {"patch_pairs", pairs},
       {"pairs_listed", listed},
       {"pairs_listed_percent", pairs > 0 ? 100.0 * double(listed) / pairs : 0.0},

@@ -35,8 +35,9 @@ TEST(PropagationDeadlineTest, PassedDeadlineThrowsAndCallbacksChangeNothing) {
   };
   watched.deadline = Clock::now() + std::chrono::hours(1);
   const VisibilityGraph g = computeVisibility(scene, sub, watched);
-  // Units of the cell stage's work: cells, or directed portals when it runs the leaf-PVS search.
-  EXPECT_TRUE(cellTotal == sub.cells.size() || cellTotal == 2 * sub.portals.size());
+  // Units of the cell stage's work: the searched (merged) cells, or their directed portals when
+  // it runs the leaf-PVS search.
+  EXPECT_TRUE(cellTotal == g.stats.cells || cellTotal == 2 * g.stats.portals);
   EXPECT_EQ(lastCells, cellTotal);
   EXPECT_EQ(lastSources, scene.patches.size());
   ASSERT_EQ(g.interactions.size(), plain.interactions.size());
