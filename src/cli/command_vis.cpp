@@ -58,8 +58,7 @@ Action addVisCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--target-checks", s->propagation.cellTargetChecks,
                   "Target checks in the cell-to-cell search (as `pvs --target-checks`): tests "
-                  "per sequence pushed spent on dropping cells no line can enter (0 = none: on "
-                  "thin BSP cells they cost more than they save)")
+                  "per sequence pushed spent on dropping cells no line can enter (0 = none)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   cmd->add_flag("--no-cell-merge{false}", s->propagation.mergeConvexCells,
@@ -117,8 +116,9 @@ Action addVisCommand(CLI::App& app) {
         100 * sub.stats.interiorAreaFraction, sub.stats.bspSeconds, sub.stats.portalSeconds);
     if (v.cellsBeforeMerge != v.cells)
       fmt::print(
-          "searched {} convex cells and {} portals (neighbours with a convex union merged)\n",
-          v.cells, v.portals);
+          "searched {} cells and {} portals (of {} and {}: neighbours with a convex union, and "
+          "the cells no patch faces into, merged)\n",
+          v.cells, v.portals, v.cellsBeforeMerge, v.portalsBeforeMerge);
     fmt::print("pairs listed {} of {:.0f} ({:.2f} %): VISIBLE {}, PARTIAL {} ({:.1f} %)\n", listed,
                pairs, pairs > 0 ? 100.0 * double(listed) / pairs : 0.0, v.pairsVisible,
                v.pairsPartial, listed ? 100.0 * double(v.pairsPartial) / double(listed) : 0.0);

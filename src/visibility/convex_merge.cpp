@@ -25,16 +25,17 @@ constexpr double kRelativeVertexSlack = 1e-8;
 /// The merged shape may exceed the parts' volumes by this fraction (rounding of the volumes).
 constexpr double kRelativeVolumeSlack = 1e-7;
 
-/// A union of cells under construction: its hull's vertices and its patches.
+/// A union of cells under construction: its convex shape (halfspaces, vertices, volume) or its
+/// blind leaves, and its patches.
 struct Part {
   std::vector<Plane> halfspaces;
   std::vector<Vec3> vertices;
   double volume = 0;
   std::vector<uint32_t> patches;  // sorted
   bool hasInterior = false;
-  bool blind = false;                    // no patch faces into it
-  std::optional<ConvexPolyhedron> hull;  // set once merged by hull
-  std::vector<uint32_t> leaves;          // set when merged as blind cells (not convex)
+  bool blind = false;                     // no patch faces into it
+  std::optional<ConvexPolyhedron> shape;  // set once merged as a convex union
+  std::vector<uint32_t> leaves;           // set when merged as blind cells (not convex)
 };
 
 /// No patch faces into the cell: none inside it, and every patch on its boundary looks away.
@@ -175,7 +176,7 @@ Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexM
       m.volume = volume;
       std::set_union(a.patches.begin(), a.patches.end(), b.patches.begin(), b.patches.end(),
                      std::back_inserter(m.patches));
-      m.hull = std::move(hull);
+      m.shape = std::move(hull);
       parts[x] = std::move(m);
       parts[y] = Part{};
       parent[y] = x;
@@ -194,8 +195,8 @@ Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexM
     if (rootCell[r] == kNone) {
       rootCell[r] = static_cast<uint32_t>(out.cells.size());
       Cell cell;
-      if (parts[r].hull) {
-        cell.shape = std::move(*parts[r].hull);
+      if (parts[r].shape) {
+        cell.shape = std::move(*parts[r].shape);
         cell.patches = std::move(parts[r].patches);
       } else if (!parts[r].leaves.empty()) {
         std::sort(parts[r].leaves.begin(), parts[r].leaves.end());

@@ -1,16 +1,21 @@
-// Cells merged where no surface lies between them. A BSP cuts open space by the planes of
-// surfaces far away (on a sector level a wall's plane runs through every room it passes), so one
-// room becomes a stack of slivers joined by portals that no surface bounds. The searches of §4
-// then see every order of those slivers as a different portal sequence, and on real levels they
-// fan out combinatorially.
+// Cells merged before the searches (§4), in two ways.
 //
-// Why merging is exact here: a merged cell K is kept only when no patch enters the interior of
-// its convex hull conv(K). Every sightline of the searches is a segment; the part of it between
-// two points of K lies in conv(K), so no patch blocks it there, and K's patches all lie on the
-// boundary of conv(K), where the facing rule of a convex cell holds. To the searches K is then
-// the convex cell conv(K), patch-free inside, as the paper's cells are. Its regions outside K (if
-// any) are air of other cells, which a segment may cross freely anyway. And a segment that leaves
-// K and comes back is still found: dropping the loop leaves a portal sequence it stabs.
+// 1. Neighbours whose union is convex and whose common face is all open. A BSP cuts open space by
+//    the planes of surfaces far away, so one room becomes a stack of slabs joined by portals that
+//    no surface bounds, and the searches try every order of the slabs. Exact: to a sightline two
+//    such cells are one convex cell (a segment between two of its points stays in it), and no
+//    patch lies inside it.
+// 2. Blind cells, those no patch faces into (no patch inside, every patch on the boundary looking
+//    away), joined with their blind neighbours into one cell of several convex parts whatever
+//    their shapes. On a real level these are the level's outside, seen only through the backs of
+//    its walls and through cracks between them; measured on doom-fd1-e1m2 (docs/BENCHMARKS.md),
+//    more than half the cells and two thirds of the portals, where the cell searches explode.
+//    Conservative: a segment's cells, read as merged cells, form a walk of portals it crosses in
+//    order; where the walk enters a merged cell twice, dropping the loop between leaves a shorter
+//    sequence of portals it still crosses in order, so the searches (which never enter a cell
+//    twice) still find it. What is lost is only the outside's own occlusion (the backs of walls
+//    seen across it), which makes the lists longer, never shorter. A non-convex cell never gives
+//    the same-cell VISIBLE shortcut (patch_search.cpp).
 #pragma once
 
 #include <cstddef>
@@ -26,16 +31,17 @@ struct ConvexMergeStats {
   size_t portalsBefore = 0, portalsAfter = 0;
 };
 
-/// A copy of `sub` in which adjacent cells (linked by a portal) are merged, greedily (largest
-/// portals first) and repeatedly, while
-/// - neither holds a patch inside it (an interior patch is seen from every side of its cell, so a
-///   larger cell would see it from more places), and
-/// - no patch of `scene` enters the interior of the convex hull of their union (shrunk by the
-///   model tolerance: a patch touching it within Tolerance::planeOffset() does not count).
-/// The merged cell's `shape` is that hull (so cells may overlap where a hull spans another cell's
-/// air); its patches are the union of its parts' (all on the hull's boundary). Portals between
-/// parts are dropped and the others renumbered (kept in order). The result's cells have no
-/// `faces` (nothing after the merge reads them). `leafCell` maps each BSP leaf to its cell.
+/// A copy of `sub` with its cells merged:
+/// - first every blind cell with its blind neighbours (linked by a portal), into cells whose
+///   `parts` list the convex leaves (and their patches);
+/// - then, greedily (largest portals first) and repeatedly, two other neighbours when neither
+///   holds a patch inside it, no patch lies in their common plane, and their union is convex
+///   (every vertex of each lies within every halfspace of the other except those on the common
+///   plane, and the intersection of those halfspaces has the two volumes): the merged cell's
+///   `shape` is that intersection.
+/// Patches are the union of the parts' (all on the boundary). Portals between parts are dropped
+/// and the others renumbered (kept in order). The result's cells have no `faces` (nothing after
+/// the merge reads them). `leafCell` maps each BSP leaf to its cell. Deterministic.
 Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub,
                              ConvexMergeStats* stats = nullptr);
 

@@ -15,13 +15,17 @@
 
 namespace gv {
 
-/// Defaults of PropagationOptions' search budgets.
-inline constexpr uint64_t kDefaultCellSequenceBudget = 500;
-inline constexpr uint64_t kDefaultPatchSequenceBudget = 5000;
-/// Off by default in `vis`: on its budgeted searches over thin BSP cells (doom-fd1-e1m2, 2
-/// threads) ratio 0.5 / 2 / 5 / 100 listed 15.74 / 15.61 / 15.52 / 13.66 % of pairs instead of
-/// 15.77 %, for a cell stage of 3.5 / 3.8 / 5.2 / 14.8 s instead of 3.3 s (docs/BENCHMARKS.md).
-inline constexpr double kDefaultCellTargetChecks = 0;
+/// Defaults of PropagationOptions' search budgets and the cell search's target checks. Chosen
+/// on the real levels once the level's outside became one cell (convex_merge.h; measured
+/// 2026-12-03, docs/BENCHMARKS.md): with target checks at 100 the cell search nearly always ends
+/// before 5,000 sequences (doom-fd2-map03: 76 of 10,224 directed portals stop), and its tight
+/// answer makes the patch searches cheap to bound: at 1,000 tests instead of 5,000 they list
+/// 4.07 % of doom-fd2-map03's pairs instead of 3.76 %, in 2.4 s instead of 5.8 s. (Before the
+/// merge, target checks cost more than they saved on the thin BSP cells of sector levels, and the
+/// budgets were 500 and 5,000.)
+inline constexpr uint64_t kDefaultCellSequenceBudget = 5000;
+inline constexpr uint64_t kDefaultPatchSequenceBudget = 1000;
+inline constexpr double kDefaultCellTargetChecks = 100;
 
 struct PropagationOptions {
   /// Threads for the per-source searches (1 = serial). The output does not depend on it.
