@@ -80,18 +80,30 @@ bool insideExceptShared(const Part& a, const Part& b, const Plane& shared, doubl
 }
 
 /// Some patch of the two parts lies in the shared plane: then their common face is not all open
-/// (in a convex union the two faces on that plane coincide, so such a patch lies on it).
+/// (in a convex union the two faces on that plane coincide, so such a patch lies on it). "In the
+/// plane" is the BSP's own rule for the patches it cuts portals around: every vertex within the
+/// model tolerance of it, whatever the patch's normal (plane_set.h merges normals up to 1e-3 rad:
+/// a normal test here let a tilted wall through, and the merged cell held it inside).
 bool patchOnPlane(const Scene& scene, const Part& a, const Part& b, const Plane& shared,
                   const Tolerance& tol) {
   for (const Part* part : {&a, &b})
     for (uint32_t p : part->patches) {
       const ConvexPolygon& poly = scene.patches[p].polygon;
-      if (std::abs(std::abs(dot(poly.plane.normal, shared.normal)) - 1) > tol.normalCos()) continue;
       if (std::all_of(poly.vertices.begin(), poly.vertices.end(), [&](const Vec3& v) {
             return std::abs(shared.distance(v)) <= tol.planeOffset();
           }))
         return true;
     }
+  return false;
+}
+
+/// The BSP node holding the portal has a patch of either part among its coplanar fragments (the
+/// opaque parts of its plane, which the portals were cut around).
+bool nodeHoldsPatchOf(const BspTree& tree, int32_t node, const Part& a, const Part& b) {
+  if (node < 0 || static_cast<size_t>(node) >= tree.nodes.size()) return false;
+  for (const PatchFragment& f : tree.nodes[static_cast<size_t>(node)].coplanar)
+    for (const Part* part : {&a, &b})
+      if (std::binary_search(part->patches.begin(), part->patches.end(), f.patch)) return true;
   return false;
 }
 
@@ -157,9 +169,14 @@ Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexM
       Part& a = parts[x];
       Part& b = parts[y];
       if (a.hasInterior || b.hasInterior || !a.leaves.empty() || !b.leaves.empty()) continue;
-      const Plane& shared = portal.polygon.plane;
+      // The plane the BSP split on, not the portal polygon's own (rounded) plane.
+      const bool hasNode =
+          portal.node >= 0 && static_cast<size_t>(portal.node) < sub.tree.nodes.size();
+      const Plane& shared = hasNode ? sub.tree.nodes[static_cast<size_t>(portal.node)].splitter
+                                    : portal.polygon.plane;
       if (!insideExceptShared(a, b, shared, slack, tol) ||
-          !insideExceptShared(b, a, shared, slack, tol) || patchOnPlane(scene, a, b, shared, tol))
+          !insideExceptShared(b, a, shared, slack, tol) || patchOnPlane(scene, a, b, shared, tol) ||
+          nodeHoldsPatchOf(sub.tree, portal.node, a, b))
         continue;
       std::vector<Plane> planes;
       for (const Part* part : {&a, &b})

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 #include <random>
 #include <set>
@@ -36,6 +37,42 @@ Scene crackedRooms() {
     b.addAxisRect(0, !first, {slit, 2.01, 0}, {slit, 4, 3}, m);
   }
   b.addBox({1, 0.5, 0}, {1.5, 1, 3}, m, kBoxAllFaces & ~(kBoxMinZ | kBoxMaxZ));  // the pillar
+  return scene;
+}
+
+/// Two closed rooms side by side along y, each split at x = 2 by a two-sided wall: room B's whole
+/// and exact (it comes first, so its plane is the one the BSP merges onto), room A's with a
+/// doorway and its pieces turned by 5e-5 rad about a vertical axis (within the model tolerance of
+/// the plane, but with normals further off than 1e-5 rad). A found by review: the merge once let
+/// room A's two halves through as one convex cell with the wall inside it.
+Scene tiltedDoorway() {
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{11});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  b.addAxisRect(0, true, {2, 6, 0}, {2, 10, 3}, m);
+  b.addAxisRect(0, false, {2, 6, 0}, {2, 10, 3}, m);
+  for (double y0 : {6.0, 0.0}) {
+    const double y1 = y0 + 4;
+    b.addAxisRect(2, true, {0, y0, 0}, {4, y1, 0}, m);
+    b.addAxisRect(2, false, {0, y0, 3}, {4, y1, 3}, m);
+    b.addAxisRect(1, true, {0, y0, 0}, {4, y0, 3}, m);
+    b.addAxisRect(1, false, {0, y1, 0}, {4, y1, 3}, m);
+    b.addAxisRect(0, true, {0, y0, 0}, {0, y1, 3}, m);
+    b.addAxisRect(0, false, {4, y0, 0}, {4, y1, 3}, m);
+  }
+  const double a = 5e-5;
+  auto piece = [&](double y0, double y1, double z0, double z1, double sign) {
+    const double yc = 0.5 * (y0 + y1);
+    std::vector<Vec3> v;
+    for (auto [y, z] : {std::pair{y0, z0}, {y1, z0}, {y1, z1}, {y0, z1}})
+      v.push_back({2 + sign * a * (y - yc), y, z});
+    EXPECT_TRUE(b.addPolygon(v, m));  // facing +x
+    std::reverse(v.begin(), v.end());
+    EXPECT_TRUE(b.addPolygon(v, m));  // facing -x
+  };
+  piece(0, 1.5, 0, 3, +1);
+  piece(2.5, 4, 0, 3, -1);
+  piece(1.5, 2.5, 2.2, 3, +1);
   return scene;
 }
 
@@ -80,7 +117,7 @@ TEST(ConvexMerge, AMergedHullHoldsNoPatchInside) {
   // Brute force, independent of the merge's own clipping: points sampled on every patch lie on or
   // outside every merged convex cell (more than a leaf, not a union of parts).
   size_t hulls = 0;
-  for (const Scene& scene : {crackedRooms(), generateOffice()}) {
+  for (const Scene& scene : {crackedRooms(), generateOffice(), tiltedDoorway()}) {
     const Subdivision sub = buildSubdivision(scene);
     const Subdivision merged = mergeConvexCells(scene, sub);
     std::vector<size_t> leaves(merged.cells.size(), 0);
