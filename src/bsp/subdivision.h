@@ -34,8 +34,8 @@ struct CellPart {
 /// A leaf cell of the BSP: a convex polyhedron of air (or of a solid's inside). After
 /// mergeConvexCells a cell may also be a union of leaves: then `parts` lists them.
 struct Cell {
-  /// The cell, or (after mergeConvexCells) the convex hull of its leaves, which no patch enters;
-  /// unset (no faces) when `parts` is not empty.
+  /// The cell (after mergeConvexCells possibly the convex union of several leaves); unset (no
+  /// faces) when `parts` is not empty.
   ConvexPolyhedron shape;
   /// Empty, or the convex leaves of a cell that is not convex (no patch faces into any of them:
   /// visibility/convex_merge.h), each with its patches.
@@ -82,7 +82,7 @@ struct Subdivision {
   std::vector<Cell> cells;  ///< cell i is tree.leaves[i], unless leafCell says otherwise
   std::vector<Portal> portals;
   SubdivisionStats stats;
-  /// The cell holding each BSP leaf when cells were merged (bsp/convex_merge.h); empty when
+  /// The cell holding each BSP leaf when cells were merged (visibility/convex_merge.h); empty when
   /// cell i is leaf i.
   std::vector<uint32_t> leafCell;
 

@@ -63,7 +63,8 @@ Action addVisCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-cell-merge{false}", s->propagation.mergeConvexCells,
                 "Search the BSP's cells as they are, without first merging neighbours whose "
-                "union is convex (exact either way; for measuring what the merge saves)");
+                "union is convex and joining the cells no patch faces into (conservative either "
+                "way; for measuring what the merge saves)");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--contact-split", s->contactSplit,

@@ -1,4 +1,4 @@
-// Merging cells (see convex_merge.h for why it is exact).
+// Merging cells (see convex_merge.h for why nothing visible is lost).
 //
 // The convexity test. Let X and Y be convex with disjoint interiors, touching in a face on plane
 // P, X behind P and Y in front. Write X = X' ∩ P⁻ and Y = Y' ∩ P⁺, where X' (Y') is the
@@ -187,7 +187,6 @@ Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexM
       const double volume = hull->volume();
       if (volume > (a.volume + b.volume) * (1 + kRelativeVolumeSlack)) continue;
       Part m;
-      m.blind = a.blind && b.blind;
       m.halfspaces = hull->halfspaces;
       m.vertices = verticesOf(*hull);
       m.volume = volume;

@@ -61,8 +61,8 @@ struct PropagationOptions {
   uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;
   /// The cell search's target checks (CellPvsOptions::targetCheckRatio; 0: none).
   double cellTargetChecks = kDefaultCellTargetChecks;
-  /// Merge adjacent cells whose union is convex before searching (bsp/convex_merge.h): exact,
-  /// and off only to measure what it saves.
+  /// Merge cells before searching (visibility/convex_merge.h: neighbours whose union is convex,
+  /// and the blind cells no patch faces into): conservative; off only to measure what it saves.
   bool mergeConvexCells = true;
 };
 
