@@ -39,7 +39,7 @@ struct VisibilityStats {
   /// Cells in regions no patch faces into, and the portals among them (live_cells.h): left out
   /// of every search.
   size_t deadCells = 0, deadPortals = 0;
-  /// Live cells and portals before the cells were merged (visibility/convex_merge.h);
+  /// The BSP's cells and portals, before dead regions and merging (visibility/convex_merge.h);
   /// `cells` counts the merged ones.
   size_t cellsBeforeMerge = 0, portalsBeforeMerge = 0;
   uint64_t cellPairsVisible = 0;  ///< ordered (source, reached) cell pairs, source included
