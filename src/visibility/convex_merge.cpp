@@ -14,6 +14,7 @@
 #include <cmath>
 #include <numeric>
 #include <optional>
+#include <utility>
 
 namespace gv {
 namespace {
@@ -117,7 +118,7 @@ uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t x) {
 
 }  // namespace
 
-Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexMergeStats* stats) {
+Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeStats* stats) {
   const Tolerance tol = sub.tree.tol;
   const double slack = kRelativeVertexSlack * tol.scale;
   const size_t n = sub.cells.size();
@@ -203,7 +204,6 @@ Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexM
   // Number the cells in the order of their first leaf; renumber the portals kept.
   constexpr uint32_t kNone = UINT32_MAX;
   Subdivision out;
-  out.tree = sub.tree;
   out.stats = sub.stats;
   std::vector<uint32_t> cellOf(n, kNone), rootCell(n, kNone);
   for (uint32_t c = 0; c < n; ++c) {
@@ -246,6 +246,7 @@ Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub, ConvexM
   }
   out.stats.cells = out.cells.size();
   out.stats.portals = out.portals.size();
+  out.tree = std::move(sub.tree);  // last: the merge above still reads sub.tree's nodes
   if (stats) {
     stats->cellsBefore = n;
     stats->cellsAfter = out.cells.size();

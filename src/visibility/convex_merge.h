@@ -44,7 +44,9 @@ struct ConvexMergeStats {
 /// Patches are the union of the parts' (all on the boundary). Portals between parts are dropped
 /// and the others renumbered (kept in order). The result's cells have no `faces` (nothing after
 /// the merge reads them). `leafCell` maps each BSP leaf to its cell. Deterministic.
-Subdivision mergeConvexCells(const Scene& scene, const Subdivision& sub,
+/// `sub` is taken by value so that a caller done with it can move it in (its BSP tree is moved
+/// on, not copied).
+Subdivision mergeConvexCells(const Scene& scene, Subdivision sub,
                              ConvexMergeStats* stats = nullptr);
 
 }  // namespace gv

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "util/timing.h"
 #include "visibility/blocker_detection.h"
@@ -27,9 +28,10 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
   const LiveCells live = findLiveCells(scene, input);
   std::optional<Subdivision> pruned;
   if (live.deadPortals > 0) pruned = withoutDeadPortals(input, live);
-  // Then open space cut into slabs by far-away planes becomes one cell again (convex_merge.h:
-  // exact, and the searches no longer try every order of the slabs).
-  if (options.mergeConvexCells) pruned = mergeConvexCells(scene, pruned ? *pruned : input);
+  // Then the cells are merged (convex_merge.h): the level's outside becomes one cell, and open
+  // space cut into slabs by far-away planes one cell per convex union.
+  if (options.mergeConvexCells)
+    pruned = mergeConvexCells(scene, pruned ? std::move(*pruned) : input);
   const Subdivision& sub = pruned ? *pruned : input;
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
