@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <deque>
 #include <mutex>
 #include <optional>
@@ -22,6 +23,10 @@ struct CellPatch {
   bool facesIn = false;   ///< the front looks into the cell
   bool interior = false;  ///< lies inside the cell: sightlines may meet either side
   bool whole = false;     ///< the piece is the whole patch
+  /// The cell's boundary plane the piece lies on (every vertex within the BSP's plane-merging
+  /// slack of it), or -1. Two pieces on one boundary plane see each other only along lines
+  /// within that slack of the plane, where a third piece merged onto it may stand.
+  int32_t boundaryPlane = -1;
 };
 
 /// The part of p within the cell, grown by the BSP's plane-merging tolerance so that pieces moved
@@ -35,6 +40,20 @@ std::optional<ConvexPolygon> clipToCell(const ConvexPolygon& p, const ConvexPoly
     if (!cur) return std::nullopt;
   }
   return cur;
+}
+
+/// The index of the halfspace of `cell` whose plane every vertex of `piece` lies within the
+/// BSP's plane-merging slack of (from either side, as the pieces merged onto it do), or -1.
+int32_t boundaryPlaneOf(const ConvexPolygon& piece, const ConvexPolyhedron& cell,
+                        const Tolerance& tol) {
+  const double slack = 2 * tol.planeOffset();
+  for (size_t h = 0; h < cell.halfspaces.size(); ++h) {
+    const Plane& plane = cell.halfspaces[h];
+    if (std::all_of(piece.vertices.begin(), piece.vertices.end(),
+                    [&](const Vec3& v) { return std::abs(plane.distance(v)) <= slack; }))
+      return static_cast<int32_t>(h);
+  }
+  return -1;
 }
 
 /// The flags a search can give a patch through this piece of it.
@@ -73,6 +92,7 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
             std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
         cp.facesIn = poly.plane.distance(inside) > 0;
         cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
+        cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
         cp.piece = std::move(*piece);
         placements[p].emplace_back(c, cellPatches[c].size());
         cellPatches[c].push_back(std::move(cp));
@@ -129,12 +149,17 @@ class PatchSearch {
       stabber_.clear();
       if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
       sourcePiece_ = &cp.piece;
-      // The shortcut needs a convex cell with nothing inside (a cell of parts is not convex).
+      // The shortcut needs a convex cell with nothing inside (a cell of parts is not convex),
+      // and S and T not on one boundary plane: the lines between those run within the plane's
+      // slack, where pieces merged onto the plane, tilted within it, can stand in the way (such
+      // pairs go to the blocker test).
       const bool cellEmpty =
           sub_.cells[cell].interiorPatches.empty() && sub_.cells[cell].parts.empty();
       if (cp.whole && cellEmpty) {
         for (const CellPatch& t : cellPatches_[cell])
-          if (t.patch != s && t.whole && t.facesIn) result.sameCellVisible.push_back(t.patch);
+          if (t.patch != s && t.whole && t.facesIn &&
+              (t.boundaryPlane < 0 || t.boundaryPlane != cp.boundaryPlane))
+            result.sameCellVisible.push_back(t.patch);
       }
       // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
       visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
