@@ -290,18 +290,21 @@ class PatchSearch {
       if (reach) nextReach.assignIntersection(*reach, through);
       const CellSet& r = reach ? nextReach : through;
       if (!r.intersects(unsaturated_)) continue;  // nothing new can be seen that way
-      if (exhausted()) {  // setBudget: the branch's answer without testing it
-        markCell(next);
-        r.forEach([&](size_t c) { markCell(static_cast<uint32_t>(c)); });
-        continue;
-      }
       if (forward) {
         scratch_ = p.polygon.vertices;
       } else {
         scratch_.assign(p.polygon.vertices.rbegin(), p.polygon.vertices.rend());
       }
+      // Over the budget the portal is still tested (one test per branch left on the path: a
+      // bounded number), and a branch that passes is answered without exploring it: every cell
+      // it might reach, whole.
       if (stabber_.push(scratch_) == StabbingResult::Blocked) continue;
-      visit(next, depth + 1, &r);
+      if (exhausted()) {
+        markCell(next);
+        r.forEach([&](size_t c) { markCell(static_cast<uint32_t>(c)); });
+      } else {
+        visit(next, depth + 1, &r);
+      }
       stabber_.pop();
     }
     onPath_[cell] = 0;
