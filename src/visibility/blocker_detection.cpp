@@ -19,6 +19,7 @@
 #include "visibility/hull_overlap.h"
 #include "visibility/patch_grid.h"
 #include "visibility/search_deadline.h"
+#include "visibility/single_occluder.h"
 
 namespace gv {
 namespace {
@@ -92,6 +93,7 @@ struct Chunk {
   size_t sourcesDone = 0;       ///< sources whose lists end by `end`
   BlockerLists lists;
   uint64_t visible = 0, partial = 0, sameCell = 0;
+  uint64_t hidden = 0;  ///< pairs dropped: hidden whole behind one of their blockers
 };
 
 /// The seen lists and the patches laid out for the blocker tests.
@@ -196,10 +198,25 @@ class BlockerDetection {
         ++chunk.sameCell;
       } else {
         addBlockers(w, s, t, lists);
+        if (hiddenByOne(sp, tp, lists.blockers(lists.size() - 1))) {
+          lists.popPair();
+          ++chunk.hidden;
+          continue;
+        }
       }
       ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
     }
     for (uint32_t e : seen_[s].seen) w.seen[seenPatch(e)] = 0;
+  }
+
+  /// Whether one of the pair's blockers hides all of T from all of S (single_occluder.h): then
+  /// the pair is INVISIBLE, though the portal searches could not tell.
+  bool hiddenByOne(const ConvexPolygon& sp, const ConvexPolygon& tp,
+                   std::span<const uint32_t> blockers) const {
+    const double margin = 2 * tol_.planeOffset();
+    for (uint32_t b : blockers)
+      if (hidesWhole(scene_.patches[b].polygon, sp, tp, margin)) return true;
+    return false;
   }
 
   /// The blockers of pair (s, t), appended to the last list of `lists`: the candidates meeting
@@ -316,6 +333,7 @@ std::vector<std::pair<uint32_t, uint32_t>> runBlockerPipeline(const BlockerDetec
                 st.pairsVisible += chunk->visible;
                 st.pairsPartial += chunk->partial;
                 st.sameCellShortcuts += chunk->sameCell;
+                st.pairsHiddenByOne += chunk->hidden;
                 blockerSum += lists.idCount();
                 for (size_t k = 0; k < lists.size(); ++k)
                   if (!lists.blockers(k).empty()) partialPairs.emplace_back(lists.s(k), lists.r(k));
@@ -332,7 +350,7 @@ std::vector<std::pair<uint32_t, uint32_t>> runBlockerPipeline(const BlockerDetec
                   options.blockerProgress(sourcesReported = chunk->sourcesDone, n);
                 if (chunk->lists.idCapacity() > kKeptIdsPerChunk) chunk->lists = {};
                 chunk->lists.clear();
-                chunk->visible = chunk->partial = chunk->sameCell = 0;
+                chunk->visible = chunk->partial = chunk->sameCell = chunk->hidden = 0;
                 freeChunks.push(chunk);
               }));
     });

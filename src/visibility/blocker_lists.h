@@ -42,6 +42,12 @@ class BlockerLists {
     ids_.push_back(id);
     ++start_.back();
   }
+  /// Removes the last pair added and its blockers.
+  void popPair() {
+    pairs_.pop_back();
+    start_.pop_back();
+    ids_.resize(start_.back());
+  }
   /// Removes every pair, keeping the capacity (a reused block allocates nothing).
   void clear() {
     pairs_.clear();

@@ -60,6 +60,9 @@ struct VisibilityStats {
   SequenceHistogram cellHistogram;            ///< Fig. 13
   uint64_t pairsVisible = 0, pairsPartial = 0;
   uint64_t sameCellShortcuts = 0;  ///< pairs declared VISIBLE by the same-empty-cell rule
+  /// Pairs the searches kept that one of their blockers hides whole (single_occluder.h):
+  /// dropped, so INVISIBLE.
+  uint64_t pairsHiddenByOne = 0;
   double meanBlockersPerPartial = 0;
   double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
   uint64_t shaftSamples = 0;

@@ -1,0 +1,20 @@
+// A pair hidden whole behind one polygon: every segment from S to R crosses the interior of one
+// blocker. Exact and cheap (|S| x |R| points against the blocker's edges), it drops pairs the
+// portal searches had to keep: occluders inside a cell (no portal separates S from R) and the
+// answers of searches that ran past their budget.
+#pragma once
+
+#include "geometry/convex_polygon.h"
+
+namespace gv {
+
+/// True when S and R lie strictly on opposite sides of `blocker`'s plane (every vertex beyond
+/// `margin`) and every segment between them crosses that plane inside `blocker` shrunk by
+/// `margin`: then no segment from S to R is free. The segments between S and R cross the plane
+/// in conv(S ∪ R) ∩ plane, the convex hull of where the segments between their vertices cross
+/// it, so testing those |S| |R| points is exact. `margin`: a line within it of the blocker's
+/// outline counts as passing by (the contact tolerance of the contract's checks).
+bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const ConvexPolygon& r,
+                double margin);
+
+}  // namespace gv

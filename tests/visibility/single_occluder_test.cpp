@@ -1,0 +1,96 @@
+// One blocker hiding a whole pair (visibility/single_occluder.h): hand-worked cases, and random
+// configurations checked by brute-force segment sampling (every "hidden" pair must have no
+// segment that misses the blocker), which does not share the test's hull argument.
+#include "visibility/single_occluder.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "visibility/ray_oracle.h"
+
+namespace gv {
+namespace {
+
+const Tolerance kTol{10};
+
+/// An axis-aligned square in the plane z = `z`, facing +z (up) or -z.
+ConvexPolygon square(double x0, double y0, double x1, double y1, double z, bool up) {
+  std::vector<Vec3> v{{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}};
+  if (!up) std::reverse(v.begin(), v.end());
+  return *ConvexPolygon::fromVertices(v, kTol);
+}
+
+TEST(SingleOccluder, AWideWallBetweenTwoSquaresHidesThem) {
+  const ConvexPolygon s = square(0, 0, 1, 1, 0, true), r = square(0, 0, 1, 1, 2, false);
+  // The segments cross z = 1 within [0, 1]²: a wall covering it with room to spare hides them,
+  // whichever way it faces.
+  EXPECT_TRUE(hidesWhole(square(-0.1, -0.1, 1.1, 1.1, 1, true), s, r, 1e-6));
+  EXPECT_TRUE(hidesWhole(square(-0.1, -0.1, 1.1, 1.1, 1, false), s, r, 1e-6));
+  EXPECT_TRUE(hidesWhole(square(-0.1, -0.1, 1.1, 1.1, 1, false), r, s, 1e-6));
+}
+
+TEST(SingleOccluder, AWallThatLeavesAGapOrTouchesTheShadowsEdgeDoesNot) {
+  const ConvexPolygon s = square(0, 0, 1, 1, 0, true), r = square(0, 0, 1, 1, 2, false);
+  EXPECT_FALSE(hidesWhole(square(-0.1, -0.1, 0.9, 1.1, 1, true), s, r, 1e-6));  // a gap at x > 0.9
+  // Exactly the shadow's size: the segment from corner to corner runs along the wall's outline,
+  // within the margin, which counts as passing by.
+  EXPECT_FALSE(hidesWhole(square(0, 0, 1, 1, 1, true), s, r, 1e-6));
+  // Wider S: the crossing region grows towards the wall (S at [-1, 2]², R at [0, 1]²: at z = 1
+  // the segments cross in [-0.5, 1.5]²).
+  const ConvexPolygon wide = square(-1, -1, 2, 2, 0, true);
+  EXPECT_FALSE(hidesWhole(square(-0.4, -0.4, 1.4, 1.4, 1, true), wide, r, 1e-6));
+  EXPECT_TRUE(hidesWhole(square(-0.6, -0.6, 1.6, 1.6, 1, true), wide, r, 1e-6));
+}
+
+TEST(SingleOccluder, PolygonsNotWhollyOnEitherSideAreNeverHidden) {
+  const ConvexPolygon s = square(0, 0, 1, 1, 0, true), wall = square(-5, -5, 5, 5, 1, true);
+  EXPECT_FALSE(hidesWhole(wall, s, square(0, 0, 1, 1, 0.5, false), 1e-6));  // same side
+  // R crossing the wall's plane (a vertical square from z = 0.5 to 1.5).
+  const ConvexPolygon crossing = *ConvexPolygon::fromVertices(
+      {{0, 0.5, 0.5}, {1, 0.5, 0.5}, {1, 0.5, 1.5}, {0, 0.5, 1.5}}, kTol);
+  EXPECT_FALSE(hidesWhole(wall, s, crossing, 1e-6));
+  // R touching the plane within the margin.
+  EXPECT_FALSE(hidesWhole(wall, s, square(0, 0, 1, 1, 1 + 1e-7, false), 1e-6));
+}
+
+TEST(SingleOccluder, WhatItCallsHiddenHasNoFreeSegmentBySampling) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto randomQuad = [&](Vec3 centre, double size) {
+    // A random convex quadrilateral: a square's corners jittered, turned randomly.
+    const Vec3 n = normalize(Vec3{u(rng), u(rng), u(rng)});
+    const Vec3 a = normalize(cross(n, std::abs(n.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0}));
+    const Vec3 b = cross(n, a);
+    std::vector<Vec3> v;
+    for (auto [x, y] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}})
+      v.push_back(centre + a * (size * (x + 0.3 * u(rng))) + b * (size * (y + 0.3 * u(rng))));
+    return ConvexPolygon::fromVertices(v, kTol);
+  };
+  int hidden = 0, notHidden = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const auto s = randomQuad({u(rng), u(rng), -2 + 0.5 * u(rng)}, 0.5);
+    const auto r = randomQuad({u(rng), u(rng), 2 + 0.5 * u(rng)}, 0.5);
+    const auto b = randomQuad({0.5 * u(rng), 0.5 * u(rng), 0.3 * u(rng)}, 1.5);
+    if (!s || !r || !b) continue;
+    if (!hidesWhole(*b, *s, *r, 1e-6)) {
+      ++notHidden;
+      continue;
+    }
+    ++hidden;
+    Scene scene;
+    scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+    scene.patches.push_back({*b, 0});
+    for (int k = 0; k < 200; ++k) {
+      const Vec3 p = test::randomPointOn(*s, rng), q = test::randomPointOn(*r, rng);
+      ASSERT_TRUE(test::firstHit(scene, p, q - p, 0, 1, UINT32_MAX))
+          << "trial " << trial << ": a segment misses the blocker";
+    }
+  }
+  // Both answers occur often enough for the check to mean something.
+  EXPECT_GT(hidden, 200);
+  EXPECT_GT(notHidden, 200);
+}
+
+}  // namespace
+}  // namespace gv
