@@ -197,8 +197,7 @@ class BlockerDetection {
       if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
         ++chunk.sameCell;
       } else {
-        addBlockers(w, s, t, lists);
-        if (hiddenByOne(sp, tp, lists.blockers(lists.size() - 1))) {
+        if (addBlockers(w, s, t, lists)) {
           lists.popPair();
           ++chunk.hidden;
           continue;
@@ -209,20 +208,16 @@ class BlockerDetection {
     for (uint32_t e : seen_[s].seen) w.seen[seenPatch(e)] = 0;
   }
 
-  /// Whether one of the pair's blockers hides all of T from all of S (single_occluder.h): then
-  /// the pair is INVISIBLE, though the portal searches could not tell.
-  bool hiddenByOne(const ConvexPolygon& sp, const ConvexPolygon& tp,
-                   std::span<const uint32_t> blockers) const {
-    const double margin = 2 * tol_.planeOffset();
-    for (uint32_t b : blockers)
-      if (hidesWhole(scene_.patches[b].polygon, sp, tp, margin)) return true;
-    return false;
-  }
-
   /// The blockers of pair (s, t), appended to the last list of `lists`: the candidates meeting
-  /// conv(S, T) seen from S (w.seen flags) or from T.
-  void addBlockers(BlockerWorker& w, uint32_t s, uint32_t t, BlockerLists& lists) const {
-    const PairHull hull(scene_.patches[s].polygon, scene_.patches[t].polygon, tol_);
+  /// conv(S, T) seen from S (w.seen flags) or from T. Returns true, and stops, at a blocker that
+  /// hides all of T from all of S (single_occluder.h): the pair is then INVISIBLE, though the
+  /// portal searches could not tell (an occluder inside a cell, a search past its budget).
+  bool addBlockers(BlockerWorker& w, uint32_t s, uint32_t t, BlockerLists& lists) const {
+    const ConvexPolygon& sp = scene_.patches[s].polygon;
+    const ConvexPolygon& tp = scene_.patches[t].polygon;
+    const double margin = 2 * tol_.planeOffset();
+    bool hidden = false;
+    const PairHull hull(sp, tp, tol_);
     Aabb box = patchBoxes_[s];
     box.add(patchBoxes_[t]);
     // The slack is PairHull's box tolerance: the grid does PairHull's box test.
@@ -252,10 +247,17 @@ class BlockerDetection {
       }
       const std::span<const Vec3> cv(vertices_.data() + vertexStart_[c],
                                      vertices_.data() + vertexStart_[c + 1]);
-      if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) lists.addBlocker(c);
+      if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) {
+        if (hidesWhole(scene_.patches[c].polygon, sp, tp, margin)) {
+          hidden = true;
+          break;
+        }
+        lists.addBlocker(c);
+      }
     }
     if (flagT)
       for (uint32_t entry : b) w.seen[seenPatch(entry)] &= kFromS;
+    return hidden;
   }
 
   const Scene& scene_;
