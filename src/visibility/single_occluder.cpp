@@ -1,7 +1,5 @@
 #include "visibility/single_occluder.h"
 
-#include <algorithm>
-#include <cmath>
 #include <vector>
 
 namespace gv {
@@ -11,14 +9,14 @@ bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const Conv
   const Plane& plane = blocker.plane;
   const double scale = length(plane.normal);  // distances in length units, whatever the normal
   if (!(scale > 0)) return false;
+  const double reach = margin * scale;       // the margin in units of plane.distance
   auto side = [&](const ConvexPolygon& p) {  // +1 / -1 when wholly beyond margin, else 0
-    double lo = INFINITY, hi = -INFINITY;
-    for (const Vec3& v : p.vertices) {
-      const double d = plane.distance(v) / scale;
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-    return lo > margin ? 1 : hi < -margin ? -1 : 0;
+    const double first = plane.distance(p.vertices[0]);
+    const int sign = first > reach ? 1 : first < -reach ? -1 : 0;
+    if (sign == 0) return 0;
+    for (size_t k = 1; k < p.vertices.size(); ++k)
+      if (sign * plane.distance(p.vertices[k]) <= reach) return 0;
+    return sign;
   };
   const int ss = side(s);
   if (ss == 0 || side(r) != -ss) return false;
