@@ -12,8 +12,10 @@ namespace gv {
 /// `margin`) and every segment between them crosses that plane inside `blocker` shrunk by
 /// `margin`: then no segment from S to R is free. The segments between S and R cross the plane
 /// in conv(S ∪ R) ∩ plane, the convex hull of where the segments between their vertices cross
-/// it, so testing those |S| |R| points is exact. `margin`: a line within it of the blocker's
-/// outline counts as passing by (the contact tolerance of the contract's checks).
+/// it, so testing those |S| |R| points is exact. A blocker whose vertices stray from its plane
+/// (within the importer's planarity tolerance) is taken as the slab they span: S and R beyond
+/// it, the crossings of both its faces inside the outline. `margin`: a line within it of the
+/// blocker's outline counts as passing by (the contact tolerance of the contract's checks).
 bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const ConvexPolygon& r,
                 double margin);
 
