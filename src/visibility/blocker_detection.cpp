@@ -196,12 +196,10 @@ class BlockerDetection {
       lists.addPair(s, t);  // its blockers are appended below, straight into the chunk
       if (isSameCellVisible(s, t) || isSameCellVisible(t, s)) {
         ++chunk.sameCell;
-      } else {
-        if (addBlockers(w, s, t, lists)) {
-          lists.popPair();
-          ++chunk.hidden;
-          continue;
-        }
+      } else if (addBlockers(w, s, t, lists)) {
+        lists.popPair();
+        ++chunk.hidden;
+        continue;
       }
       ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
     }

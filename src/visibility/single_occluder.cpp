@@ -35,19 +35,17 @@ bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const Conv
   // counter-clockwise outline seen from the front (and is parallel to the plane, so the test
   // reads positions projected onto it).
   const size_t m = b.size();
-  for (const Vec3& p : s.vertices) {
-    for (const Vec3& q : r.vertices) {
-      for (const double level : {-dev, dev}) {
-        const double dp = plane.distance(p) - level, dq = plane.distance(q) - level;
-        const Vec3 x = p + (q - p) * (dp / (dp - dq));
-        for (size_t i = 0; i < m; ++i) {
-          const Vec3 e = b[(i + 1) % m] - b[i];
-          const Vec3 inward = cross(plane.normal, e);
-          const double len = length(inward);
-          if (!(len > 0) || !(dot(inward, x - b[i]) / len >= margin)) return false;
+  for (size_t i = 0; i < m; ++i) {
+    const Vec3 inward = cross(plane.normal, b[(i + 1) % m] - b[i]);
+    const double len = length(inward);
+    if (!(len > 0)) return false;
+    for (const Vec3& p : s.vertices)
+      for (const Vec3& q : r.vertices)
+        for (const double level : {-dev, dev}) {
+          const double dp = plane.distance(p) - level, dq = plane.distance(q) - level;
+          const Vec3 x = p + (q - p) * (dp / (dp - dq));
+          if (!(dot(inward, x - b[i]) >= margin * len)) return false;
         }
-      }
-    }
   }
   return true;
 }

@@ -11,13 +11,8 @@
 namespace gv {
 namespace {
 
+using test::quoted;
 using test::runCli;
-
-std::string quoted(const std::filesystem::path& p) {
-  std::string s = "'";  // built by append: GCC 12 warns falsely (-Wrestrict) on "'" + string
-  s.append(p.string()).append("'");
-  return s;
-}
 
 TEST(Cli, HelpListsTheSubcommands) {
   const auto r = runCli("help");
@@ -95,7 +90,8 @@ namespace {
 TEST(Cli, VisWritesTheContractFiles) {
   const auto dir = test::scratchDir();
   ASSERT_EQ(test::runCli("gen cornell -o '" + (dir / "c.obj").string() + "'").exitCode, 0);
-  const auto r = test::runCli("vis '" + (dir / "c.obj").string() + "' -o '" + (dir / "out").string() + "'");
+  const auto r =
+      test::runCli("vis '" + (dir / "c.obj").string() + "' -o '" + (dir / "out").string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* f : {"patches.obj", "patches.mtl", "visibility.txt", "stats.json"})
     EXPECT_TRUE(std::filesystem::exists(dir / "out" / f)) << f;

@@ -17,12 +17,7 @@ namespace gv {
 namespace {
 
 using nlohmann::json;
-
-std::string quoted(const std::filesystem::path& p) {
-  std::string s = "'";
-  s.append(p.string()).append("'");
-  return s;
-}
+using test::quoted;
 
 /// Runs `globalvis ARGS`, expects exit code `code`, returns stdout parsed (fails on non-JSON).
 json runJson(const std::string& args, int code = 0) {

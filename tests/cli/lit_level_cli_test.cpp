@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -19,10 +20,7 @@ namespace gv {
 namespace {
 
 using nlohmann::json;
-
-std::string quoted(const std::filesystem::path& p) {
-  return "'" + p.string() + "'";
-}
+using test::quoted;
 
 void expectMatchesLightTracing(const std::string& level, const std::string& mode) {
   const std::filesystem::path path =

@@ -114,7 +114,7 @@ TEST(ReportCli, ReportOfARunHasItsTablesAndFigures) {
   fs::copy(run, dir, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
   test::writeFile(dir / "radiosity" / "render.png", tinyPng());
 
-  const auto r = test::runCli("report " + test::quotedPath(dir));
+  const auto r = test::runCli("report " + test::quoted(dir));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const std::string page = test::readFile(dir / "report.html");
   for (const char* id : {"table-7-1", "table-7-2", "table-fig13", "table-7-3", "table-1-paper",
@@ -150,8 +150,8 @@ TEST(ReportCli, ReportOfARunHasItsTablesAndFigures) {
 
 #ifdef GV_VIEWER_BUNDLE
   // --viewer writes the viewer first and frames it; -o elsewhere keeps the link relative.
-  const auto withViewer = test::runCli("report --viewer " + test::quotedPath(dir) + " -o " +
-                                       test::quotedPath(dir / "cells" / "r.html"));
+  const auto withViewer = test::runCli("report --viewer " + test::quoted(dir) + " -o " +
+                                       test::quoted(dir / "cells" / "r.html"));
   ASSERT_EQ(withViewer.exitCode, 0) << withViewer.output;
   EXPECT_TRUE(fs::is_regular_file(dir / "viewer.html"));
   EXPECT_NE(test::readFile(dir / "cells" / "r.html").find("src=\"../viewer.html\""),
@@ -161,7 +161,7 @@ TEST(ReportCli, ReportOfARunHasItsTablesAndFigures) {
 
 TEST(ReportCli, EmptyDirectoryIsAnInputError) {
   const fs::path dir = test::scratchDir();
-  const auto r = test::runCli("report " + test::quotedPath(dir));
+  const auto r = test::runCli("report " + test::quoted(dir));
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.output.find("no cells/stats.json"), std::string::npos) << r.output;
   const auto missing = test::runCli("report /nonexistent/run");

@@ -15,12 +15,6 @@
 
 namespace gv::test {
 
-inline std::string quotedPath(const std::filesystem::path& p) {
-  std::string s = "'";
-  s.append(p.string()).append("'");
-  return s;
-}
-
 /// Removes a directory when the test process ends.
 struct RemoveAtExit {
   std::filesystem::path dir;
@@ -42,12 +36,12 @@ inline const std::filesystem::path& smallRun(std::string* error = nullptr) {
     cleanup.dir = d;
     std::filesystem::remove_all(d);
     std::filesystem::create_directories(d);
-    const std::string obj = quotedPath(d / "office.obj");
+    const std::string obj = quoted(d / "office.obj");
     for (const std::string& args :
          {"gen office --rows 1 --columns 2 -o " + obj,
-          "cells " + obj + " -o " + quotedPath(d / "cells"),
-          "vis " + obj + " -o " + quotedPath(d / "vis") + " --min-coverage 0.3",
-          "radiosity " + obj + " -o " + quotedPath(d / "radiosity") +
+          "cells " + obj + " -o " + quoted(d / "cells"),
+          "vis " + obj + " -o " + quoted(d / "vis") + " --min-coverage 0.3",
+          "radiosity " + obj + " -o " + quoted(d / "radiosity") +
               " --quiet --max-refinements 1 --rays 4"}) {
       const CliResult r = runCli(args);
       if (r.exitCode != 0) {

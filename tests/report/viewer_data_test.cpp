@@ -84,7 +84,7 @@ TEST(ViewCli, PageEmbedsTheRunAsItsFilesSayAndTheBundle) {
   const fs::path& run = test::smallRun(&error);
   ASSERT_FALSE(run.empty()) << error;
   const fs::path out = test::scratchDir() / "viewer.html";
-  const auto r = test::runCli("view " + test::quotedPath(run) + " -o " + test::quotedPath(out));
+  const auto r = test::runCli("view " + test::quoted(run) + " -o " + test::quoted(out));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const std::string page = test::readFile(out);
   const std::string bundle = test::readFile(GV_VIEWER_BUNDLE);
@@ -144,7 +144,7 @@ TEST(ViewCli, MissingBundleAndInconsistentFilesAreClearErrors) {
   std::string error;
   const fs::path& run = test::smallRun(&error);
   ASSERT_FALSE(run.empty()) << error;
-  const auto r = test::runCli("view " + test::quotedPath(run) + " --bundle /nonexistent/viewer.js");
+  const auto r = test::runCli("view " + test::quoted(run) + " --bundle /nonexistent/viewer.js");
   EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.output.find("viewer bundle not found"), std::string::npos) << r.output;
 
@@ -153,8 +153,7 @@ TEST(ViewCli, MissingBundleAndInconsistentFilesAreClearErrors) {
   test::writeFile(dir / "radiosity.txt", "0 1 1 1\n");
   const fs::path bundle = dir / "fake-viewer.js";
   test::writeFile(bundle, "void 0;");
-  const auto bad =
-      test::runCli("view " + test::quotedPath(dir) + " --bundle " + test::quotedPath(bundle));
+  const auto bad = test::runCli("view " + test::quoted(dir) + " --bundle " + test::quoted(bundle));
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.output.find("radiosity.txt: 1 patches, but patches.obj has"), std::string::npos)
       << bad.output;
@@ -162,7 +161,7 @@ TEST(ViewCli, MissingBundleAndInconsistentFilesAreClearErrors) {
   const fs::path empty = dir / "empty";
   fs::create_directories(empty);
   const auto none =
-      test::runCli("view " + test::quotedPath(empty) + " --bundle " + test::quotedPath(bundle));
+      test::runCli("view " + test::quoted(empty) + " --bundle " + test::quoted(bundle));
   EXPECT_EQ(none.exitCode, 2);
   EXPECT_NE(none.output.find("no patches.obj"), std::string::npos) << none.output;
 }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace gv::test {
@@ -13,6 +14,13 @@ struct CliResult {
   int exitCode = -1;
   std::string output;  ///< what it printed (runCli: stdout and stderr together)
 };
+
+/// `p` in single quotes, for pasting into a command line.
+inline std::string quoted(const std::filesystem::path& p) {
+  std::string s = "'";  // built by append: GCC 12 warns falsely (-Wrestrict) on "'" + string
+  s.append(p.string()).append("'");
+  return s;
+}
 
 /// Runs a shell command line, capturing its stdout.
 inline CliResult runShell(const std::string& command) {
