@@ -132,6 +132,9 @@ Action addVisCommand(CLI::App& app) {
           "reach): {} of {} directed portals (--cell-budget), {} of {} source patches "
           "(--patch-budget)\n",
           v.cellSearchesOverBudget, 2 * v.portals, v.patchSearchesOverBudget, v.patches);
+    if (v.thinWallSlivers > 0)
+      fmt::print("pieces of patches searched across one-sided walls they end against: {}\n",
+                 v.thinWallSlivers);
     if (v.pairsHiddenByOne > 0)
       fmt::print("pairs dropped as hidden whole behind one of their blockers: {}\n",
                  v.pairsHiddenByOne);

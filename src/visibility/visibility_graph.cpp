@@ -141,6 +141,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"partial_percent_of_listed", listed ? 100.0 * double(s.pairsPartial) / double(listed) : 0.0},
       {"same_cell_shortcuts", s.sameCellShortcuts},
       {"pairs_hidden_by_one_blocker", s.pairsHiddenByOne},
+      {"thin_wall_slivers", s.thinWallSlivers},
       {"cell_pairs_visible", s.cellPairsVisible},
       {"cell_searches_over_budget", s.cellSearchesOverBudget},
       {"patch_searches_over_budget", s.patchSearchesOverBudget},

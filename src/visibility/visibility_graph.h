@@ -63,6 +63,9 @@ struct VisibilityStats {
   /// Pairs the searches kept that one of their blockers hides whole (single_occluder.h):
   /// dropped, so INVISIBLE.
   uint64_t pairsHiddenByOne = 0;
+  /// Pieces of patches placed in a cell across a one-sided wall they end against (patch_search.cpp:
+  /// rays may cross such a wall within the contact tolerance of their start).
+  uint64_t thinWallSlivers = 0;
   double meanBlockersPerPartial = 0;
   double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
   uint64_t shaftSamples = 0;

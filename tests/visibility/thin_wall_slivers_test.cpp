@@ -1,0 +1,87 @@
+// Patches ending against a one-sided wall (patch_search.cpp, placeThinWallSlivers): a ray that
+// leaves such a patch within the model tolerance of the wall crosses the wall within that distance
+// of its start, which the contact rule of `verify` and of the outside checks does not count, and
+// sees the room behind. The pairs it names must be listed; behind a thick wall they must not be.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "generators/scene_builder.h"
+#include "visibility/propagation.h"
+#include "visibility/ray_oracle.h"
+
+namespace gv {
+namespace {
+
+/// Two rooms along x, A = [0, 4] and B = [4 + gap, 8 + gap], each 4 deep (y) and 3 high (z),
+/// closed by inward-facing walls. With gap = 0 the wall between them is one face at x = 4 facing
+/// A, whose back B sees (a zero-thickness one-sided wall); with gap > 0 each room has its own
+/// wall and the slab between them is solid. Returns the ids of A's floor and of B's far wall.
+struct TwoRooms {
+  Scene scene;
+  uint32_t floorA = 0, farWallB = 0;
+};
+
+TwoRooms twoRooms(double gap) {
+  TwoRooms out;
+  Scene& scene = out.scene;
+  SceneBuilder b(scene, Tolerance{14});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  auto room = [&](double x0, double x1, bool wallAtX0, bool wallAtX1) {
+    b.addAxisRect(2, true, {x0, 0, 0}, {x1, 4, 0}, m);   // floor
+    b.addAxisRect(2, false, {x0, 0, 3}, {x1, 4, 3}, m);  // ceiling
+    b.addAxisRect(1, true, {x0, 0, 0}, {x1, 0, 3}, m);
+    b.addAxisRect(1, false, {x0, 4, 0}, {x1, 4, 3}, m);
+    if (wallAtX0) b.addAxisRect(0, true, {x0, 0, 0}, {x0, 4, 3}, m);
+    if (wallAtX1) b.addAxisRect(0, false, {x1, 0, 0}, {x1, 4, 3}, m);
+  };
+  out.floorA = static_cast<uint32_t>(scene.patches.size());
+  room(0, 4, true, true);
+  room(4 + gap, 8 + gap, gap > 0, true);
+  out.farWallB = static_cast<uint32_t>(scene.patches.size() - 1);
+  return out;
+}
+
+bool listed(const VisibilityGraph& g, uint32_t a, uint32_t b) {
+  const uint32_t s = std::min(a, b), r = std::max(a, b);
+  return std::any_of(g.interactions.begin(), g.interactions.end(),
+                     [&](const Interaction& in) { return in.s == s && in.r == r; });
+}
+
+TEST(ThinWallSlivers, FloorEndingAgainstAOneSidedWallIsListedWithTheRoomBehind) {
+  const TwoRooms rooms = twoRooms(0);
+  const Scene& scene = rooms.scene;
+  const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
+  // The witness, checked by the brute-force ray caster: from A's floor 0.3 contact distances
+  // short of the wall, up and across; its first hit (the wall) lies within the contact distance
+  // of its start, and past it the ray reaches B's far wall with nothing in between.
+  const Vec3 origin{4 - 0.3 * contact, 2, 0};
+  const Vec3 dir = normalize(Vec3{1, 0, 0.5});
+  const auto first = test::firstHit(scene, origin, dir, 0, 1e9, rooms.floorA);
+  ASSERT_TRUE(first);
+  EXPECT_LT(first->t, contact);
+  const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->patch, rooms.farWallB);
+  EXPECT_TRUE(next->front);
+
+  const Subdivision sub = buildSubdivision(scene);
+  const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
+  EXPECT_TRUE(listed(g, rooms.floorA, rooms.farWallB));
+  EXPECT_GT(g.stats.thinWallSlivers, 0u);
+}
+
+TEST(ThinWallSlivers, BehindAThickWallNothingIsAdded) {
+  // The same rooms with a solid slab 0.5 thick between them: a ray crossing A's wall within the
+  // contact distance is inside the slab, and meets the back of B's wall beyond it. No pair of A
+  // and B may be listed.
+  const TwoRooms rooms = twoRooms(0.5);
+  const Subdivision sub = buildSubdivision(rooms.scene);
+  const VisibilityGraph g = computeVisibility(rooms.scene, sub, PropagationOptions{});
+  const uint32_t firstOfB = rooms.floorA + 6;
+  for (const Interaction& in : g.interactions)
+    EXPECT_FALSE(in.s < firstOfB && in.r >= firstOfB) << in.s << " " << in.r;
+}
+
+}  // namespace
+}  // namespace gv
