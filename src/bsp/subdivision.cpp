@@ -46,9 +46,15 @@ Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
   size_t faces = 0, coaffine = 0;
   for (Cell& cell : sub.cells) {
     std::vector<uint32_t> onBoundary;
-    for (const BoundaryFace& face : cell.faces) {
+    for (size_t i = 0; i < cell.faces.size(); ++i) {
+      const BoundaryFace& face = cell.faces[i];
       onBoundary.insert(onBoundary.end(), face.coaffinePatches.begin(), face.coaffinePatches.end());
+      const Vec3 outward = cell.shape.faces[i].polygon.plane.normal;
+      for (uint32_t p : face.coaffinePatches)
+        if (dot(outward, scene.patches[p].polygon.plane.normal) < 0)
+          cell.facingPatches.push_back(p);
     }
+    sortUnique(cell.facingPatches);
     sortUnique(onBoundary);
     coaffine += onBoundary.size();
     faces += cell.faces.size();

@@ -43,6 +43,12 @@ struct Cell {
   std::vector<BoundaryFace> faces;  ///< parallel to shape.faces (empty after mergeConvexCells)
   /// Patches inside the cell or on its boundary (coaffine with a face), sorted, no repeats.
   std::vector<uint32_t> patches;
+  /// Patches on the boundary whose front looks into the cell as the BSP placed them (coaffine
+  /// with a face whose outward normal opposes theirs), sorted. The BSP may put a patch on a plane
+  /// tilted from its own within the model tolerance, so the cell's centroid can lie a hair
+  /// behind the patch's own plane while the cell is the air in front of it (e3m4.map: a wedge
+  /// 0.23 thick along a 288-unit wall); this list, not the centroid, says which way it looks.
+  std::vector<uint32_t> facingPatches;
   /// Patches lying inside the cell rather than on its boundary (left by the stop rule), sorted.
   std::vector<uint32_t> interiorPatches;
   std::vector<uint32_t> portals;  ///< portals on the cell's boundary, sorted

@@ -33,6 +33,7 @@ struct Part {
   std::vector<Vec3> vertices;
   double volume = 0;
   std::vector<uint32_t> patches;  // sorted
+  std::vector<uint32_t> facing;   // sorted: Cell::facingPatches
   bool hasInterior = false;
   bool blind = false;                     // no patch faces into it
   std::optional<ConvexPolyhedron> shape;  // set once merged as a convex union
@@ -41,7 +42,7 @@ struct Part {
 
 /// No patch faces into the cell: none inside it, and every patch on its boundary looks away.
 bool isBlind(const Scene& scene, const Cell& cell) {
-  if (!cell.interiorPatches.empty()) return false;
+  if (!cell.interiorPatches.empty() || !cell.facingPatches.empty()) return false;
   const Vec3 inside = cell.shape.centroid();
   for (uint32_t p : cell.patches)
     if (scene.patches[p].polygon.plane.distance(inside) > 0) return false;
@@ -129,6 +130,7 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
     parts[c].vertices = verticesOf(cell.shape);
     parts[c].volume = cell.shape.volume();
     parts[c].patches = cell.patches;
+    parts[c].facing = cell.facingPatches;
     parts[c].hasInterior = !cell.interiorPatches.empty();
     parts[c].blind = isBlind(scene, cell);
   }
@@ -193,6 +195,8 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
       m.volume = volume;
       std::set_union(a.patches.begin(), a.patches.end(), b.patches.begin(), b.patches.end(),
                      std::back_inserter(m.patches));
+      std::set_union(a.facing.begin(), a.facing.end(), b.facing.begin(), b.facing.end(),
+                     std::back_inserter(m.facing));
       m.shape = std::move(hull);
       parts[x] = std::move(m);
       parts[y] = Part{};
@@ -214,6 +218,7 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
       if (parts[r].shape) {
         cell.shape = std::move(*parts[r].shape);
         cell.patches = std::move(parts[r].patches);
+        cell.facingPatches = std::move(parts[r].facing);
       } else if (!parts[r].leaves.empty()) {
         std::sort(parts[r].leaves.begin(), parts[r].leaves.end());
         for (uint32_t leaf : parts[r].leaves)
@@ -222,6 +227,7 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
       } else {
         cell.shape = sub.cells[c].shape;
         cell.patches = sub.cells[c].patches;
+        cell.facingPatches = sub.cells[c].facingPatches;
         cell.interiorPatches = sub.cells[c].interiorPatches;
       }
       out.cells.push_back(std::move(cell));

@@ -186,7 +186,8 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
     const Cell& cell = sub.cells[c];
     // A cell merged from several convex leaves is placed leaf by leaf (each piece faces in or out
     // of its own leaf); a convex cell is its own single part.
-    auto place = [&](const ConvexPolyhedron& shape, const std::vector<uint32_t>& patches) {
+    auto place = [&](const ConvexPolyhedron& shape, const std::vector<uint32_t>& patches,
+                     const std::vector<uint32_t>& facing) {
       const Vec3 inside = shape.centroid();
       for (uint32_t p : patches) {
         const ConvexPolygon& poly = scene.patches[p].polygon;
@@ -196,7 +197,10 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
         cp.patch = p;
         cp.interior =
             std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
-        cp.facesIn = poly.plane.distance(inside) > 0;
+        // As the BSP placed it, or by the cell's centroid (either is enough: a piece said to face
+        // in is only searched more).
+        cp.facesIn =
+            std::binary_search(facing.begin(), facing.end(), p) || poly.plane.distance(inside) > 0;
         cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
         cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
         cp.piece = std::move(*piece);
@@ -205,9 +209,10 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
       }
     };
     if (cell.parts.empty()) {
-      place(cell.shape, cell.patches);
+      place(cell.shape, cell.patches, cell.facingPatches);
     } else {
-      for (const CellPart& part : cell.parts) place(part.shape, part.patches);
+      // Blind leaves: no patch faces into them as the BSP placed it.
+      for (const CellPart& part : cell.parts) place(part.shape, part.patches, {});
     }
   }
   out.thinWallSlivers = placeThinWallSlivers(scene, sub, tol, out);
