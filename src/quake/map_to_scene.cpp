@@ -34,7 +34,6 @@
 #include <tuple>
 
 #include "quake/brush_csg.h"
-#include "scene/face_to_patches.h"
 #include "util/input_error.h"
 
 namespace gv {
@@ -393,14 +392,6 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
     for (ConvexPolygon& p : faces)
       scene.patches.push_back({std::move(p), it->second, kNoSourceFace});
   }
-  // Pieces and faces thinner than the model tolerance of the patches' own bounds, which the OBJ
-  // importer drops as degenerate: patches.obj must read back as these patches (face k = patch k;
-  // e3m4.map had 33). Dropping can only shrink the bounds, and the tolerance with them, so what
-  // is left is no sliver under the importer's tolerance either.
-  const Tolerance patchTol = scene.tolerance();
-  const size_t beforeSlivers = scene.patches.size();
-  std::erase_if(scene.patches, [&](const Patch& p) { return isSliver(p.polygon, patchTol); });
-  st.sliverPatches = beforeSlivers - scene.patches.size();
   st.patches = scene.patches.size();
 
   // 5. The report.
@@ -427,9 +418,6 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
          "unbounded), at line(s) " +
              lines + (degenerateLines.size() > 5 ? ", ..." : ""));
   }
-  note(st.sliverPatches,
-       "face piece(s) thinner than the model tolerance dropped (1e-5 of the scene's diagonal)");
-  report.droppedDegenerate += st.sliverPatches;
   note(st.skyFaces, "sky face(s) kept as black (absorbing) patches");
   note(st.skipFaces, "skip face(s) not drawn (their brushes stay solid)");
   note(st.skippedLights, "light(s) skipped (light value <= 0, or inside solids)");

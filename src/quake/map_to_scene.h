@@ -28,15 +28,12 @@ struct MapImportStats {
   size_t nonSolidEntityBrushes = 0;  ///< brushes of trigger_*, func_illusionary, info_* ...
   size_t moverBrushes = 0;           ///< brushes of movers (solid unless includeMovers is false)
   size_t clipBrushes = 0, hintBrushes = 0, originBrushes = 0, triggerBrushes = 0;
-  size_t liquidBrushes = 0;      ///< a *water / *slime / *lava / *tele face: not solid
-  size_t skipOnlyBrushes = 0;    ///< every face textured skip: not solid
-  size_t degenerateBrushes = 0;  ///< collinear side points, empty, unbounded or flat solids
-  size_t brushFaces = 0;         ///< boundary faces of the solids
-  size_t skipFaces = 0;          ///< faces textured skip: solid but never drawn
-  size_t hiddenFaces = 0;        ///< faces wholly inside or against other solids: no patch
-  /// Patches thinner than the model tolerance (the OBJ importer's sliver rule): dropped, so that
-  /// patches.obj reads back as the same patches.
-  size_t sliverPatches = 0;
+  size_t liquidBrushes = 0;        ///< a *water / *slime / *lava / *tele face: not solid
+  size_t skipOnlyBrushes = 0;      ///< every face textured skip: not solid
+  size_t degenerateBrushes = 0;    ///< collinear side points, empty, unbounded or flat solids
+  size_t brushFaces = 0;           ///< boundary faces of the solids
+  size_t skipFaces = 0;            ///< faces textured skip: solid but never drawn
+  size_t hiddenFaces = 0;          ///< faces wholly inside or against other solids: no patch
   size_t cutFaces = 0;             ///< faces partly hidden, cut into the pieces left visible
   size_t skyFaces = 0;             ///< faces textured sky*: black (absorbing) patches
   size_t lights = 0;               ///< light / light_* entities turned into emitters

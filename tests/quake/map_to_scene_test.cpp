@@ -13,8 +13,6 @@
 #include "input/load_scene.h"
 #include "quake/brush_csg.h"
 #include "quake/map_text.h"
-#include "scene/patches_obj.h"
-#include "scene/scene_io.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
 #include "util/input_error.h"
@@ -471,27 +469,6 @@ TEST(MapToScene, DegenerateBrushesAreDroppedAndCounted) {
   for (const std::string& w : s.report.warnings)
     warned = warned || w.find("degenerate brush") != std::string::npos;
   EXPECT_TRUE(warned);
-}
-
-TEST(MapToScene, PatchesThinnerThanTheToleranceAreDroppedSoPatchesObjReadsBack) {
-  // A 10,000-unit block with one vertical edge chamfered 0.05 deep: the chamfer is a face 0.07
-  // wide, below the model tolerance (1e-5 of the diagonal, ~0.14), which the OBJ importer drops
-  // as degenerate. The map import drops it too, so the scene written as patches.obj imports as
-  // the same patches (e3m4.map once wrote 33 such patches and `verify` refused its own output).
-  std::string block = "{\n( 0.05 0 300 ) ( 0.05 0 0 ) ( 0 0.05 0 ) wall 0 0 0 1 1\n";
-  for (int k = 0; k < 3; ++k)
-    block += test::boxSide(k, -1, 0, "wall") + test::boxSide(k, 1, k == 2 ? 300 : 10000, "wall");
-  block += "}\n";
-  MapImportStats st;
-  const Scene s = convert(world(block), &st);
-  EXPECT_EQ(st.sliverPatches, 1u);
-  EXPECT_EQ(s.report.droppedDegenerate, 1u);
-  EXPECT_EQ(s.patches.size(), 6u);
-  const auto dir = test::scratchDir();
-  const std::string path = (dir / "patches.obj").string();
-  writeObj(s, path);
-  const Scene back = importPatchesObj(path, "the test");
-  EXPECT_EQ(back.patches.size(), s.patches.size());
 }
 
 TEST(MapToScene, MoversCanBeLeftOut) {
