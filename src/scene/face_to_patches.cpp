@@ -60,16 +60,17 @@ bool isConvexCcw(const std::vector<Point2>& p) {
 /// face is held to the face's own sliver rule: the patches written to patches.obj must import
 /// again as the same patches (face k = patch k), so none may be one the importer would drop.
 void addPiece(std::vector<Vec3> verts, const Vec3& faceNormal, const Tolerance& tol,
-              std::vector<ConvexPolygon>& out) {
+              bool keepSlivers, std::vector<ConvexPolygon>& out) {
   auto poly = ConvexPolygon::fromVertices(std::move(verts), tol);
-  if (!poly || dot(poly->plane.normal, faceNormal) <= 0 || isSliver(*poly, tol)) return;
+  if (!poly || dot(poly->plane.normal, faceNormal) <= 0 || (!keepSlivers && isSliver(*poly, tol)))
+    return;
   out.push_back(std::move(*poly));
 }
 
 void addFan(const std::vector<Vec3>& v, const std::vector<size_t>& idx, const Vec3& faceNormal,
-            const Tolerance& tol, std::vector<ConvexPolygon>& out) {
+            const Tolerance& tol, bool keepSlivers, std::vector<ConvexPolygon>& out) {
   for (size_t i = 1; i + 1 < idx.size(); ++i)
-    addPiece({v[idx[0]], v[idx[i]], v[idx[i + 1]]}, faceNormal, tol, out);
+    addPiece({v[idx[0]], v[idx[i]], v[idx[i + 1]]}, faceNormal, tol, keepSlivers, out);
 }
 
 }  // namespace
@@ -86,7 +87,7 @@ bool isSliver(double twiceArea, double diameter, const Tolerance& tol) {
   return twiceArea / std::max(diameter, tol.length()) <= tol.planeOffset();
 }
 
-FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
+FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol, bool keepSlivers) {
   FacePatches result;
   for (const Vec3& p : face)
     if (!isFinite(p)) return result;  // importers reject these earlier; stay safe anyway
@@ -94,7 +95,7 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
   if (v.size() < 3) return result;
   const Vec3 n2 = newellNormal(v);
   const double diameter = diameterOf(v);
-  if (isSliver(length(n2), diameter, tol)) return result;
+  if (!keepSlivers && isSliver(length(n2), diameter, tol)) return result;
   const Vec3 normal = normalize(n2);
 
   Vec3 centroid;
@@ -110,10 +111,10 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
 
   if (isConvexCcw(pts)) {
     if (planar) {
-      addPiece(v, normal, tol, result.pieces);
+      addPiece(v, normal, tol, keepSlivers, result.pieces);
       result.outcome = FaceOutcome::Convex;
     } else {
-      addFan(v, all, normal, tol, result.pieces);
+      addFan(v, all, normal, tol, keepSlivers, result.pieces);
       result.outcome = FaceOutcome::Triangulated;
     }
   } else {
@@ -129,16 +130,16 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol) {
         if (planar) {
           std::vector<Vec3> piece;
           for (size_t i : idx) piece.push_back(v[i]);
-          addPiece(std::move(piece), normal, tol, result.pieces);
+          addPiece(std::move(piece), normal, tol, keepSlivers, result.pieces);
         } else {
-          addFan(v, idx, normal, tol, result.pieces);
+          addFan(v, idx, normal, tol, keepSlivers, result.pieces);
         }
       }
       result.outcome = planar ? FaceOutcome::SplitConvex : FaceOutcome::Triangulated;
     } else {
       // Self-intersecting (or clockwise-dominated) loop: no partition is meaningful. Fan it and
       // keep the triangles that face the way the face does; they cover what can be salvaged.
-      addFan(v, all, normal, tol, result.pieces);
+      addFan(v, all, normal, tol, keepSlivers, result.pieces);
       result.outcome = FaceOutcome::Triangulated;
     }
   }

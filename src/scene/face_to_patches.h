@@ -27,7 +27,10 @@ struct FacePatches {
 /// non-convex simple faces are partitioned into convex pieces (Hertel–Mehlhorn, via CGAL);
 /// self-intersecting faces are fan-triangulated and the triangles that face backwards dropped.
 /// Vertices of the output are input vertices: nothing is moved or re-projected.
-FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol);
+/// `keepSlivers`: keep faces and pieces thinner than the model tolerance (isSliver), as a file
+/// this tool wrote must read back face for face (scene/patches_obj.h); user input drops them.
+FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol,
+                          bool keepSlivers = false);
 
 /// The largest distance between two of the vertices.
 double diameterOf(const std::vector<Vec3>& vertices);

@@ -59,11 +59,11 @@ std::vector<std::string> splitLines(const std::string& text) {
 
 }  // namespace
 
-Scene importObj(const std::string& path) {
-  return importObjText(path, readWholeFile(path));
+Scene importObj(const std::string& path, bool keepSlivers) {
+  return importObjText(path, readWholeFile(path), keepSlivers);
 }
 
-Scene importObjText(const std::string& path, const std::string& text) {
+Scene importObjText(const std::string& path, const std::string& text, bool keepSlivers) {
   Scene scene;
   const ObjPrecheck pre = precheckObj(path, text);
   const std::string mtlText = readMaterialLibraries(path, pre.libraries, scene.report);
@@ -112,7 +112,7 @@ Scene importObjText(const std::string& path, const std::string& text) {
       }
       offset += count;
       ++report.facesIn;
-      const FacePatches converted = faceToPatches(face, tol);
+      const FacePatches converted = faceToPatches(face, tol, keepSlivers);
       if (!countFaceOutcome(converted.outcome, report)) continue;
       const int mid = f < mesh.material_ids.size() ? mesh.material_ids[f] : -1;
       uint32_t material;

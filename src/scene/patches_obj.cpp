@@ -7,7 +7,9 @@
 namespace gv {
 
 Scene importPatchesObj(const std::string& path, std::string_view writer) {
-  Scene scene = importObj(path);
+  // Slivers kept: the BSP and the CSG of .map files make pieces thinner than the model tolerance
+  // (e3m4.map: 33), which user input would lose, and dropping them would renumber the patches.
+  Scene scene = importObj(path, /*keepSlivers=*/true);
   const ImportReport& r = scene.report;
   if (r.droppedDegenerate || r.splitNonConvex || r.triangulatedNonPlanar)
     throw InputError(path, 0,

@@ -10,10 +10,12 @@ namespace gv {
 
 /// Reads Wavefront OBJ with its MTL libraries (looked up beside the OBJ). A missing MTL gives a
 /// warning and grey 0.5 without emission; a present but unreadable or malformed MTL is an error.
-Scene importObj(const std::string& path);
+/// `keepSlivers`: keep faces thinner than the model tolerance (faceToPatches), for files this
+/// tool wrote (scene/patches_obj.h).
+Scene importObj(const std::string& path, bool keepSlivers = false);
 
 /// importObj on text already read; `path` names it in messages and locates its MTL libraries.
-Scene importObjText(const std::string& path, const std::string& text);
+Scene importObjText(const std::string& path, const std::string& text, bool keepSlivers = false);
 
 /// Reads a mesh through Assimp (PLY, glTF/GLB, ...): node transforms applied, every polygon a face
 /// (front = counter-clockwise side, as glTF), material diffuse / glTF base colour → Kd, emissive

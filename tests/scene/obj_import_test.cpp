@@ -5,6 +5,7 @@
 #include <random>
 
 #include "input/load_scene.h"
+#include "scene/patches_obj.h"
 #include "scene/scene_io.h"
 #include "support/temp_dir.h"
 #include "util/input_error.h"
@@ -85,10 +86,33 @@ TEST(ObjImport, ExportThenImportGivesTheSamePatchesBitForBit) {
   }
 }
 
+TEST(ObjImport, PatchFilesKeepSliversThatUserInputDrops) {
+  // A 1000-unit floor and, beside it, a triangle 0.005 wide: thinner than the model tolerance
+  // (1e-5 of the diagonal, 0.01), so an OBJ from a user loses it, but the CSG of .map files makes
+  // such pieces (e3m4.map: 33) and a patch file must read back face for face (face k = patch k).
+  const auto dir = scratchDir();
+  const Tolerance tol{1000};
+  Scene a;
+  a.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  for (const std::vector<Vec3>& v :
+       std::vector<std::vector<Vec3>>{{{0, 0, 0}, {1000, 0, 0}, {1000, 1000, 0}, {0, 1000, 0}},
+                                      {{0, -1, 0}, {500, -1.01, 0}, {500, -1, 0}}}) {
+    auto poly = ConvexPolygon::fromVertices(v, tol);
+    ASSERT_TRUE(poly);
+    a.patches.push_back({*poly, 0, static_cast<uint32_t>(a.patches.size())});
+  }
+  const std::string path = (dir / "patches.obj").string();
+  writeObj(a, path);
+  EXPECT_EQ(importObj(path).patches.size(), 1u);  // the sliver dropped, as from a user
+  const Scene b = importPatchesObj(path, "the test");
+  ASSERT_EQ(b.patches.size(), 2u);
+  EXPECT_EQ(b.patches[1].polygon.vertices, a.patches[1].polygon.vertices);
+}
+
 TEST(ObjImport, DegenerateFacesAreCountedNotFatal) {
   const auto dir = scratchDir();
-  const Scene s = importObj(writeFile(dir / "d.obj",
-                                      "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 1 1 1\n"));
+  const Scene s = importObj(
+      writeFile(dir / "d.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 1 1 1\n"));
   EXPECT_EQ(s.report.facesIn, 3u);
   EXPECT_EQ(s.report.droppedDegenerate, 2u);
   ASSERT_EQ(s.patches.size(), 1u);
@@ -120,26 +144,34 @@ TEST(ObjImportBadInput, MissingFile) {
 }
 
 TEST(ObjImportBadInput, NanAndInfCoordinatesNameTheLine) {
-  EXPECT_NE(importError("v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n").find("bad.obj:3: vertex coordinate 'nan' is not finite"),
+  EXPECT_NE(importError("v 0 0 0\nv 1 0 0\nv 0 nan 0\nf 1 2 3\n")
+                .find("bad.obj:3: vertex coordinate 'nan' is not finite"),
             std::string::npos);
-  EXPECT_NE(importError("v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n").find("bad.obj:2:"), std::string::npos);
-  EXPECT_NE(importError("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n").find("bad.obj:2:"), std::string::npos);
+  EXPECT_NE(importError("v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n").find("bad.obj:2:"),
+            std::string::npos);
+  EXPECT_NE(importError("v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n").find("bad.obj:2:"),
+            std::string::npos);
 }
 
 TEST(ObjImportBadInput, MalformedVertex) {
-  EXPECT_NE(importError("v 0 0\n").find("bad.obj:1: vertex needs 3 coordinates"), std::string::npos);
+  EXPECT_NE(importError("v 0 0\n").find("bad.obj:1: vertex needs 3 coordinates"),
+            std::string::npos);
   EXPECT_NE(importError("v 0 zero 0\n").find("bad.obj:1: vertex coordinate 'zero' is not a number"),
             std::string::npos);
 }
 
 TEST(ObjImportBadInput, BadFaceIndices) {
-  EXPECT_NE(importError(std::string(kTriangle) + "f 1 2 9\n").find("bad.obj:4: face vertex index 9 is out of range"),
+  EXPECT_NE(importError(std::string(kTriangle) + "f 1 2 9\n")
+                .find("bad.obj:4: face vertex index 9 is out of range"),
             std::string::npos);
-  EXPECT_NE(importError(std::string(kTriangle) + "f 0 1 2\n").find("bad.obj:4: face vertex index 0"),
+  EXPECT_NE(
+      importError(std::string(kTriangle) + "f 0 1 2\n").find("bad.obj:4: face vertex index 0"),
+      std::string::npos);
+  EXPECT_NE(importError(std::string(kTriangle) + "f -1 -2 -4\n")
+                .find("bad.obj:4: relative face vertex index -4"),
             std::string::npos);
-  EXPECT_NE(importError(std::string(kTriangle) + "f -1 -2 -4\n").find("bad.obj:4: relative face vertex index -4"),
-            std::string::npos);
-  EXPECT_NE(importError(std::string(kTriangle) + "f 1 x 3\n").find("bad.obj:4: face vertex 'x' is not an index"),
+  EXPECT_NE(importError(std::string(kTriangle) + "f 1 x 3\n")
+                .find("bad.obj:4: face vertex 'x' is not an index"),
             std::string::npos);
 }
 
@@ -150,12 +182,14 @@ TEST(ObjImportBadInput, FaceWithFewerThanThreeVertices) {
 
 TEST(ObjImportBadInput, EmptySceneAndAllDegenerate) {
   EXPECT_EQ(importError(""), std::string(scratchDir() / "bad.obj") + ": the scene has no faces");
-  EXPECT_NE(importError("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").find("no usable face"), std::string::npos);
+  EXPECT_NE(importError("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").find("no usable face"),
+            std::string::npos);
 }
 
 TEST(ObjImportBadInput, MalformedMtlNamesItsLine) {
   const std::string obj = "mtllib bad.mtl\n" + std::string(kTriangle) + "f 1 2 3\n";
-  EXPECT_NE(importError(obj, "newmtl a\nKd 0.5 abc 0.5\n").find("bad.mtl:2: Kd value 'abc' is not a number"),
+  EXPECT_NE(importError(obj, "newmtl a\nKd 0.5 abc 0.5\n")
+                .find("bad.mtl:2: Kd value 'abc' is not a number"),
             std::string::npos);
   EXPECT_NE(importError(obj, "newmtl a\nKe 1 nan 1\n").find("bad.mtl:2:"), std::string::npos);
   EXPECT_NE(importError(obj, "newmtl a\nKd -1 0 0\n").find("non-negative"), std::string::npos);
@@ -165,10 +199,12 @@ TEST(ObjImportBadInput, UnreadableMtlNamesTheObjLine) {
   const auto dir = scratchDir();
   std::filesystem::create_directories(dir / "lib.mtl");  // a directory where a file should be
   try {
-    importObj(writeFile(dir / "x.obj", "# header\nmtllib lib.mtl\n" + std::string(kTriangle) + "f 1 2 3\n"));
+    importObj(writeFile(dir / "x.obj",
+                        "# header\nmtllib lib.mtl\n" + std::string(kTriangle) + "f 1 2 3\n"));
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("x.obj:2: material library unreadable"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("x.obj:2: material library unreadable"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -177,14 +213,17 @@ TEST(ObjImport, CarriageReturnLineEndingsAreLineEnds) {
   const auto dir = scratchDir();
   const Scene s = importObj(writeFile(dir / "mac.obj", "v 0 0 0\rv 1 0 0\r\nv 0 1 0\rf 1 2 3\r"));
   EXPECT_EQ(s.patches.size(), 1u);
-  EXPECT_NE(importError("mt\rf 1/1/1 2/ 1\n").find("bad.obj:2: face vertex index 1 is out of range"),
-            std::string::npos)
+  EXPECT_NE(
+      importError("mt\rf 1/1/1 2/ 1\n").find("bad.obj:2: face vertex index 1 is out of range"),
+      std::string::npos)
       << importError("mt\rf 1/1/1 2/ 1\n");
 }
 
 TEST(ObjImportBadInput, UnsupportedExtension) {
-  // .stl and the like now go through Assimp (assimp_import_test.cpp); an unknown extension is refused.
-  EXPECT_NE(importError("whatever", "", "scene.qqq").find("unsupported scene format '.qqq'"), std::string::npos);
+  // .stl and the like now go through Assimp (assimp_import_test.cpp); an unknown extension is
+  // refused.
+  EXPECT_NE(importError("whatever", "", "scene.qqq").find("unsupported scene format '.qqq'"),
+            std::string::npos);
 }
 
 }  // namespace
