@@ -122,7 +122,8 @@ json viewerDataJson(const RunFiles& files, const std::string& title,
       perPatch = readRadiosityTxt(files.radiosityTxt.string(), scene.patches.size());
     } else {
       // radiosity.txt is per patch of the radiosity run's own patches (cut along contacts).
-      const Scene pieces = importObj(files.radiosityPatchesObj.string());
+      // A file this tool wrote: read back face for face, slivers kept (scene/patches_obj.h).
+      const Scene pieces = importObj(files.radiosityPatchesObj.string(), /*keepSlivers=*/true);
       perPatch = radiosityOnPatches(
           scene, pieces, readRadiosityTxt(files.radiosityTxt.string(), pieces.patches.size()));
       if (!perPatch)

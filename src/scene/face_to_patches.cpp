@@ -57,8 +57,8 @@ bool isConvexCcw(const std::vector<Point2>& p) {
 }
 
 /// Adds the piece if it is a usable polygon facing the same way as the face. A piece of a split
-/// face is held to the face's own sliver rule: the patches written to patches.obj must import
-/// again as the same patches (face k = patch k), so none may be one the importer would drop.
+/// face is held to the face's own sliver rule (unless `keepSlivers`, for files this tool wrote): a
+/// user's face that thin is dropped, and so is a piece of one.
 void addPiece(std::vector<Vec3> verts, const Vec3& faceNormal, const Tolerance& tol,
               bool keepSlivers, std::vector<ConvexPolygon>& out) {
   auto poly = ConvexPolygon::fromVertices(std::move(verts), tol);
@@ -95,7 +95,8 @@ FacePatches faceToPatches(const std::vector<Vec3>& face, const Tolerance& tol, b
   if (v.size() < 3) return result;
   const Vec3 n2 = newellNormal(v);
   const double diameter = diameterOf(v);
-  if (!keepSlivers && isSliver(length(n2), diameter, tol)) return result;
+  // Zero area (or a bow tie whose halves cancel) has no normal to face by, slivers or not.
+  if (!(length(n2) > 0) || (!keepSlivers && isSliver(length(n2), diameter, tol))) return result;
   const Vec3 normal = normalize(n2);
 
   Vec3 centroid;

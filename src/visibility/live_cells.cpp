@@ -28,10 +28,13 @@ LiveCells findLiveCells(const Scene& scene, const Subdivision& sub) {
       stack.pop_back();
       const Cell& cell = sub.cells[c];
       if (!regionLive[id]) {
-        // The same facing rule as the searches' (propagation.cpp): interior patches can be seen
-        // from either side; a boundary patch faces in when the cell's centroid is in front.
+        // The same facing rule as the searches' (patch_search.cpp): interior patches can be seen
+        // from either side; a boundary patch faces in when the BSP placed it facing in
+        // (Cell::facingPatches) or the cell's centroid is in front of it.
         const Vec3 inside = cell.shape.centroid();
+        if (!cell.facingPatches.empty()) regionLive[id] = 1;
         for (uint32_t p : cell.patches) {
+          if (regionLive[id]) break;
           if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p) ||
               scene.patches[p].polygon.plane.distance(inside) > 0) {
             regionLive[id] = 1;

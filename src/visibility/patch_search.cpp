@@ -197,10 +197,14 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
         cp.patch = p;
         cp.interior =
             std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p);
-        // As the BSP placed it, or by the cell's centroid (either is enough: a piece said to face
-        // in is only searched more).
-        cp.facesIn =
-            std::binary_search(facing.begin(), facing.end(), p) || poly.plane.distance(inside) > 0;
+        // As the BSP placed it, or by the cell's centroid. When the two disagree (a patch the
+        // BSP moved onto a plane tilted from its own), both sides are searched for, as for a
+        // patch inside the cell: the front test finds what sees its front, the back test keeps
+        // it a blocker for lines that meet its own plane's back.
+        const bool placedFacing = std::binary_search(facing.begin(), facing.end(), p);
+        const bool centroidFacing = poly.plane.distance(inside) > 0;
+        cp.facesIn = placedFacing || centroidFacing;
+        if (placedFacing != centroidFacing) cp.interior = true;
         cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
         cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
         cp.piece = std::move(*piece);
@@ -264,12 +268,13 @@ class PatchSearch {
       // The shortcut needs a convex cell with nothing inside (a cell of parts is not convex),
       // and S and T not on one boundary plane: the lines between those run within the plane's
       // slack, where pieces merged onto the plane, tilted within it, can stand in the way (such
-      // pairs go to the blocker test).
+      // pairs go to the blocker test). Pieces searched from both sides (`interior`: a patch whose
+      // facing the BSP and the centroid disagree on) stay out of it too.
       const bool cellEmpty =
           sub_.cells[cell].interiorPatches.empty() && sub_.cells[cell].parts.empty();
-      if (cp.whole && cellEmpty) {
+      if (cp.whole && !cp.interior && cellEmpty) {
         for (const CellPatch& t : cellPatches_[cell])
-          if (t.patch != s && t.whole && t.facesIn &&
+          if (t.patch != s && t.whole && t.facesIn && !t.interior &&
               (t.boundaryPlane < 0 || t.boundaryPlane != cp.boundaryPlane))
             result.sameCellVisible.push_back(t.patch);
       }

@@ -87,9 +87,10 @@ TEST(ObjImport, ExportThenImportGivesTheSamePatchesBitForBit) {
 }
 
 TEST(ObjImport, PatchFilesKeepSliversThatUserInputDrops) {
-  // A 1000-unit floor and, beside it, a triangle 0.005 wide: thinner than the model tolerance
-  // (1e-5 of the diagonal, 0.01), so an OBJ from a user loses it, but the CSG of .map files makes
-  // such pieces (e3m4.map: 33) and a patch file must read back face for face (face k = patch k).
+  // A 1000-unit floor and, beside it, a triangle 0.01 wide (2 area / diameter): thinner than the
+  // model tolerance (1e-5 of the diagonal, ~0.0141), so an OBJ from a user loses it, but the CSG
+  // of .map files makes such pieces (e3m4.map: 33) and a patch file must read back face for face
+  // (face k = patch k). A file whose faces are not one patch each is still refused.
   const auto dir = scratchDir();
   const Tolerance tol{1000};
   Scene a;
@@ -107,6 +108,10 @@ TEST(ObjImport, PatchFilesKeepSliversThatUserInputDrops) {
   const Scene b = importPatchesObj(path, "the test");
   ASSERT_EQ(b.patches.size(), 2u);
   EXPECT_EQ(b.patches[1].polygon.vertices, a.patches[1].polygon.vertices);
+  const std::string lShape = writeFile(dir / "l.obj",
+                                       "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\n"
+                                       "f 1 2 3 4 5 6\n");
+  EXPECT_THROW(importPatchesObj(lShape, "the test"), InputError);
 }
 
 TEST(ObjImport, DegenerateFacesAreCountedNotFatal) {

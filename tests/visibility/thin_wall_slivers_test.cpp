@@ -59,6 +59,7 @@ TEST(ThinWallSlivers, FloorEndingAgainstAOneSidedWallIsListedWithTheRoomBehind) 
   const Vec3 dir = normalize(Vec3{1, 0, 0.5});
   const auto first = test::firstHit(scene, origin, dir, 0, 1e9, rooms.floorA);
   ASSERT_TRUE(first);
+  EXPECT_EQ(first->patch, rooms.floorA + 5);  // A's wall at x = 4
   EXPECT_LT(first->t, contact);
   const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
   ASSERT_TRUE(next);
@@ -78,6 +79,7 @@ TEST(ThinWallSlivers, BehindAThickWallNothingIsAdded) {
   const TwoRooms rooms = twoRooms(0.5);
   const Subdivision sub = buildSubdivision(rooms.scene);
   const VisibilityGraph g = computeVisibility(rooms.scene, sub, PropagationOptions{});
+  EXPECT_EQ(g.stats.thinWallSlivers, 0u);
   const uint32_t firstOfB = rooms.floorA + 6;
   for (const Interaction& in : g.interactions)
     EXPECT_FALSE(in.s < firstOfB && in.r >= firstOfB) << in.s << " " << in.r;
