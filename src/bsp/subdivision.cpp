@@ -25,6 +25,14 @@ std::vector<uint32_t> Subdivision::neighbours(uint32_t cell) const {
   return out;
 }
 
+bool somePatchFacesInto(const Scene& scene, const Cell& cell) {
+  if (!cell.interiorPatches.empty() || !cell.facingPatches.empty()) return true;
+  const Vec3 inside = cell.shape.centroid();
+  return std::any_of(cell.patches.begin(), cell.patches.end(), [&](uint32_t p) {
+    return scene.patches[p].polygon.plane.distance(inside) > 0;
+  });
+}
+
 Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
   Subdivision sub;
   const auto bspStart = Clock::now();

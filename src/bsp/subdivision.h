@@ -110,6 +110,11 @@ struct Subdivision {
 /// Throws std::invalid_argument for a scene without patches.
 Subdivision buildSubdivision(const Scene& scene, const BspOptions& options = {});
 
+/// Whether some patch faces into a convex cell of buildSubdivision: one lies inside it, the BSP
+/// placed one facing in (Cell::facingPatches), or the cell's centroid is in front of one on its
+/// boundary. The one facing rule of the searches, the live regions and the blind-cell merge.
+bool somePatchFacesInto(const Scene& scene, const Cell& cell);
+
 /// Cells that leave more of the surface than this inside them do not follow the scene. A patch
 /// inside a cell is invisible to the searches (they see through the cell), and on real levels
 /// the few such walls are the ones with the level's outside behind them, through which the

@@ -40,15 +40,6 @@ struct Part {
   std::vector<uint32_t> leaves;           // set when merged as blind cells (not convex)
 };
 
-/// No patch faces into the cell: none inside it, and every patch on its boundary looks away.
-bool isBlind(const Scene& scene, const Cell& cell) {
-  if (!cell.interiorPatches.empty() || !cell.facingPatches.empty()) return false;
-  const Vec3 inside = cell.shape.centroid();
-  for (uint32_t p : cell.patches)
-    if (scene.patches[p].polygon.plane.distance(inside) > 0) return false;
-  return true;
-}
-
 std::vector<Vec3> verticesOf(const ConvexPolyhedron& shape) {
   std::vector<Vec3> v;
   for (const PolyhedronFace& f : shape.faces)
@@ -132,7 +123,7 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
     parts[c].patches = cell.patches;
     parts[c].facing = cell.facingPatches;
     parts[c].hasInterior = !cell.interiorPatches.empty();
-    parts[c].blind = isBlind(scene, cell);
+    parts[c].blind = !somePatchFacesInto(scene, cell);
   }
 
   std::vector<uint32_t> parent(n);

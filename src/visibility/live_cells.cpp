@@ -7,8 +7,6 @@
 // a segment from S or R, from within the same region). Its portals can go.
 #include "visibility/live_cells.h"
 
-#include <algorithm>
-
 namespace gv {
 
 LiveCells findLiveCells(const Scene& scene, const Subdivision& sub) {
@@ -27,21 +25,8 @@ LiveCells findLiveCells(const Scene& scene, const Subdivision& sub) {
       const uint32_t c = stack.back();
       stack.pop_back();
       const Cell& cell = sub.cells[c];
-      if (!regionLive[id]) {
-        // The same facing rule as the searches' (patch_search.cpp): interior patches can be seen
-        // from either side; a boundary patch faces in when the BSP placed it facing in
-        // (Cell::facingPatches) or the cell's centroid is in front of it.
-        const Vec3 inside = cell.shape.centroid();
-        if (!cell.facingPatches.empty()) regionLive[id] = 1;
-        for (uint32_t p : cell.patches) {
-          if (regionLive[id]) break;
-          if (std::binary_search(cell.interiorPatches.begin(), cell.interiorPatches.end(), p) ||
-              scene.patches[p].polygon.plane.distance(inside) > 0) {
-            regionLive[id] = 1;
-            break;
-          }
-        }
-      }
+      // The searches' facing rule (bsp/subdivision.h).
+      if (!regionLive[id] && somePatchFacesInto(scene, cell)) regionLive[id] = 1;
       for (uint32_t pid : cell.portals) {
         const uint32_t next = sub.portals[pid].other(c);
         if (region[next] == kUnset) {

@@ -159,7 +159,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
       auto piece = clipToCell(poly, cell.shape, tol);
       if (!piece) continue;
       if (std::none_of(walls.begin(), walls.end(), [&](size_t k) {
-            return listed[k].patch != p && crossesInto(poly, *piece, listed[k]);
+            return crossesInto(poly, *piece, listed[k]);  // p is none of B's listed patches
           }))
         continue;
       CellPatch cp;
