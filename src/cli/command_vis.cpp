@@ -118,8 +118,9 @@ Action addVisCommand(CLI::App& app) {
     if (v.cellsBeforeMerge != v.cells)
       fmt::print(
           "searched {} cells and {} portals (of {} and {}: neighbours with a convex union, and "
-          "the cells no patch faces into, merged)\n",
-          v.cells, v.portals, v.cellsBeforeMerge, v.portalsBeforeMerge);
+          "the cells no patch faces into, merged; {} portals before coplanar pieces of one "
+          "opening were joined)\n",
+          v.cells, v.portals, v.cellsBeforeMerge, v.portalsBeforeMerge, v.portalsBeforeJoin);
     fmt::print("pairs listed {} of {:.0f} ({:.2f} %): VISIBLE {}, PARTIAL {} ({:.1f} %)\n", listed,
                pairs, pairs > 0 ? 100.0 * double(listed) / pairs : 0.0, v.pairsVisible,
                v.pairsPartial, listed ? 100.0 * double(v.pairsPartial) / double(listed) : 0.0);

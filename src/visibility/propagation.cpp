@@ -17,6 +17,7 @@
 #include "visibility/convex_merge.h"
 #include "visibility/live_cells.h"
 #include "visibility/patch_search.h"
+#include "visibility/portal_join.h"
 
 namespace gv {
 
@@ -30,8 +31,12 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
   if (live.deadPortals > 0) pruned = withoutDeadPortals(input, live);
   // Then the cells are merged (convex_merge.h): the level's outside becomes one cell, and open
   // space cut into slabs by far-away planes one cell per convex union.
-  if (options.mergeConvexCells)
+  // Then the pieces of one opening between two merged cells become one portal (portal_join.h).
+  PortalJoinStats joined;
+  if (options.mergeConvexCells) {
     pruned = mergeConvexCells(scene, pruned ? std::move(*pruned) : input);
+    joined = joinCoplanarPortals(*pruned);
+  }
   const Subdivision& sub = pruned ? *pruned : input;
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
@@ -47,6 +52,7 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
   st.portals = sub.portals.size();
   st.cellsBeforeMerge = input.cells.size();
   st.portalsBeforeMerge = input.portals.size();
+  st.portalsBeforeJoin = options.mergeConvexCells ? joined.portalsBefore : sub.portals.size();
   st.deadCells = live.deadCells;
   st.deadPortals = live.deadPortals;
   st.threads = threads;

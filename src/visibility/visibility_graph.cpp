@@ -133,6 +133,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"dead_portals", s.deadPortals},
       {"cells_before_merge", s.cellsBeforeMerge},
       {"portals_before_merge", s.portalsBeforeMerge},
+      {"portals_before_join", s.portalsBeforeJoin},
       {"patch_pairs", pairs},
       {"pairs_listed", listed},
       {"pairs_listed_percent", pairs > 0 ? 100.0 * double(listed) / pairs : 0.0},

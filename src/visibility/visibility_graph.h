@@ -42,6 +42,9 @@ struct VisibilityStats {
   /// The BSP's cells and portals, before dead regions and merging (visibility/convex_merge.h);
   /// `cells` counts the merged ones.
   size_t cellsBeforeMerge = 0, portalsBeforeMerge = 0;
+  /// Portals of the merged cells before coplanar pieces of one opening were joined
+  /// (visibility/portal_join.h); `portals` counts the joined ones.
+  size_t portalsBeforeJoin = 0;
   uint64_t cellPairsVisible = 0;  ///< ordered (source, reached) cell pairs, source included
   /// Searches stopped by their budget and answered conservatively (PropagationOptions::
   /// cellSequenceBudget, patchSequenceBudget): directed portals of the cell search, source patches.

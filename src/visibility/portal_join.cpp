@@ -1,0 +1,104 @@
+// Joining coplanar portals between the same two cells (see portal_join.h). The hull is CGAL's
+// (convex_hull_2 on the plane's 2D coordinates, exact predicates).
+#include "visibility/portal_join.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/convex_hull_2.h>
+
+#include <cmath>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace gv {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// The hull of `a` and `b` (in a's plane) when it is their union: its area exceeds theirs by no
+/// more than a band of the length tolerance along its boundary (the pieces' shared edges agree
+/// only to rounding).
+std::optional<ConvexPolygon> unionIfConvex(const ConvexPolygon& a, const ConvexPolygon& b,
+                                           const Tolerance& tol) {
+  const Plane& plane = a.plane;
+  const Vec3 n = plane.normal;
+  // (u, v, n) right-handed: counter-clockwise in (u, v) is counter-clockwise seen from the front.
+  const Vec3 u = normalize(std::abs(n.x) < 0.6 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0}));
+  const Vec3 v = cross(n, u);
+  const Vec3 origin = a.vertices[0];
+  std::vector<Kernel::Point_2> points, hull;
+  for (const ConvexPolygon* poly : {&a, &b})
+    for (const Vec3& w : poly->vertices)
+      points.emplace_back(dot(w - origin, u), dot(w - origin, v));
+  CGAL::convex_hull_2(points.begin(), points.end(), std::back_inserter(hull));
+  std::vector<Vec3> vertices;
+  vertices.reserve(hull.size());
+  double perimeter = 0;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    const Kernel::Point_2& p = hull[i];
+    const Kernel::Point_2& q = hull[(i + 1) % hull.size()];
+    perimeter += std::hypot(q.x() - p.x(), q.y() - p.y());
+    vertices.push_back(origin + u * p.x() + v * p.y());
+  }
+  std::optional<ConvexPolygon> joined = ConvexPolygon::fromVerticesInPlane(vertices, plane, tol);
+  if (!joined || joined->area() > a.area() + b.area() + tol.length() * perimeter)
+    return std::nullopt;
+  return joined;
+}
+
+}  // namespace
+
+PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
+  const Tolerance tol = sub.tree.tol;
+  PortalJoinStats stats;
+  stats.portalsBefore = sub.portals.size();
+  // Pieces of one opening: same back, same front, same merged plane.
+  std::map<std::tuple<uint32_t, uint32_t, int64_t>, std::vector<uint32_t>> groups;
+  for (uint32_t i = 0; i < sub.portals.size(); ++i) {
+    const Portal& p = sub.portals[i];
+    const int64_t plane = p.node >= 0 && static_cast<size_t>(p.node) < sub.tree.nodes.size()
+                              ? int64_t{sub.tree.nodes[static_cast<size_t>(p.node)].plane}
+                              : -1 - int64_t{i};  // no node: never joined
+    groups[{p.back, p.front, plane}].push_back(i);
+  }
+  // absorbedBy[i] = the portal whose polygon now covers portal i (i itself when kept).
+  std::vector<uint32_t> absorbedBy(sub.portals.size());
+  for (uint32_t i = 0; i < sub.portals.size(); ++i) absorbedBy[i] = i;
+  for (auto& [key, ids] : groups) {
+    if (ids.size() < 2) continue;
+    // Greedy passes until no two of the remaining pieces join (ids ascending: deterministic).
+    for (bool joined = true; joined;) {
+      joined = false;
+      for (size_t i = 0; i < ids.size(); ++i)
+        for (size_t j = i + 1; j < ids.size();) {
+          std::optional<ConvexPolygon> u =
+              unionIfConvex(sub.portals[ids[i]].polygon, sub.portals[ids[j]].polygon, tol);
+          if (!u) {
+            ++j;
+            continue;
+          }
+          sub.portals[ids[i]].polygon = std::move(*u);
+          absorbedBy[ids[j]] = ids[i];
+          ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(j));
+          joined = true;
+        }
+    }
+  }
+  std::vector<Portal> kept;
+  for (uint32_t i = 0; i < sub.portals.size(); ++i)
+    if (absorbedBy[i] == i) kept.push_back(std::move(sub.portals[i]));
+  sub.portals = std::move(kept);
+  for (Cell& cell : sub.cells) cell.portals.clear();
+  for (uint32_t id = 0; id < sub.portals.size(); ++id) {
+    sub.cells[sub.portals[id].back].portals.push_back(id);
+    sub.cells[sub.portals[id].front].portals.push_back(id);
+  }
+  sub.stats.portals = sub.portals.size();
+  stats.portalsAfter = sub.portals.size();
+  return stats;
+}
+
+}  // namespace gv
