@@ -5,7 +5,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <iterator>
 #include <map>
 #include <optional>
@@ -17,6 +19,15 @@ namespace gv {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// Pieces of one group joined among themselves at most this many at a time (see below).
+constexpr size_t kMaxPiecesPerRun = 64;
+
+/// The boxes meet, grown by `slack`: pieces that do not cannot form a convex union.
+bool touch(const Aabb& a, const Aabb& b, double slack) {
+  return a.lo.x <= b.hi.x + slack && b.lo.x <= a.hi.x + slack && a.lo.y <= b.hi.y + slack &&
+         b.lo.y <= a.hi.y + slack && a.lo.z <= b.hi.z + slack && b.lo.z <= a.hi.z + slack;
+}
 
 /// The hull of `a` and `b` (in a's plane) when it is their union: its area exceeds theirs by no
 /// more than a band of the length tolerance along its boundary (the pieces' shared edges agree
@@ -67,24 +78,33 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
   // absorbedBy[i] = the portal whose polygon now covers portal i (i itself when kept).
   std::vector<uint32_t> absorbedBy(sub.portals.size());
   for (uint32_t i = 0; i < sub.portals.size(); ++i) absorbedBy[i] = i;
-  for (auto& [key, ids] : groups) {
-    if (ids.size() < 2) continue;
-    // Greedy passes until no two of the remaining pieces join (ids ascending: deterministic).
-    for (bool joined = true; joined;) {
-      joined = false;
-      for (size_t i = 0; i < ids.size(); ++i)
-        for (size_t j = i + 1; j < ids.size();) {
-          std::optional<ConvexPolygon> u =
-              unionIfConvex(sub.portals[ids[i]].polygon, sub.portals[ids[j]].polygon, tol);
-          if (!u) {
-            ++j;
-            continue;
+  for (auto& [key, all] : groups) {
+    // Greedy passes until no two of the remaining pieces join (ids ascending: deterministic), in
+    // runs of at most kMaxPiecesPerRun pieces: the passes are cubic in the pieces at worst, and a
+    // hostile plane cut into thousands of pieces must not hang the run (pieces left apart only
+    // cost time).
+    for (size_t first = 0; first < all.size(); first += kMaxPiecesPerRun) {
+      std::vector<uint32_t> ids(all.begin() + static_cast<std::ptrdiff_t>(first),
+                                all.begin() + static_cast<std::ptrdiff_t>(
+                                                  std::min(all.size(), first + kMaxPiecesPerRun)));
+      for (bool joined = true; joined && ids.size() > 1;) {
+        joined = false;
+        for (size_t i = 0; i < ids.size(); ++i)
+          for (size_t j = i + 1; j < ids.size();) {
+            ConvexPolygon& a = sub.portals[ids[i]].polygon;
+            const ConvexPolygon& b = sub.portals[ids[j]].polygon;
+            std::optional<ConvexPolygon> u;
+            if (touch(a.bounds(), b.bounds(), tol.length())) u = unionIfConvex(a, b, tol);
+            if (!u) {
+              ++j;
+              continue;
+            }
+            a = std::move(*u);
+            absorbedBy[ids[j]] = ids[i];
+            ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(j));
+            joined = true;
           }
-          sub.portals[ids[i]].polygon = std::move(*u);
-          absorbedBy[ids[j]] = ids[i];
-          ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(j));
-          joined = true;
-        }
+      }
     }
   }
   std::vector<Portal> kept;

@@ -73,6 +73,27 @@ TEST(PortalJoin, JoinsOnlyPiecesWhoseUnionIsConvex) {
   EXPECT_EQ(sub.cells[2].portals, (std::vector<uint32_t>{4}));
 }
 
+TEST(PortalJoin, AThousandPiecesOfOnePlaneJoinInBoundedRuns) {
+  // 1,000 unit squares in a row between the same two cells: joined 64 at a time (a bounded
+  // amount of work per run, whatever the input), into 16 rectangles covering the same area.
+  Subdivision sub;
+  const Tolerance tol(2000);
+  sub.tree.tol = tol;
+  sub.tree.nodes.push_back(BspNode{});
+  sub.cells.resize(2);
+  for (int k = 0; k < 1000; ++k) {
+    sub.portals.push_back(rectPortal(0, k, 0, k + 1, 1, 0, 1, 0, tol));
+    sub.cells[0].portals.push_back(static_cast<uint32_t>(k));
+    sub.cells[1].portals.push_back(static_cast<uint32_t>(k));
+  }
+  const PortalJoinStats stats = joinCoplanarPortals(sub);
+  EXPECT_EQ(stats.portalsAfter, 16u);
+  double area = 0;
+  for (const Portal& p : sub.portals) area += p.polygon.area();
+  EXPECT_NEAR(area, 1000.0, 1e-6);
+  EXPECT_NEAR(sub.portals[0].polygon.area(), 64.0, 1e-9);
+}
+
 TEST(PortalJoin, EveryPieceOfARealLevelStaysInsideAPortalBetweenItsCells) {
   // An arena level's merged cells, before and after the join: every piece's vertices lie in one
   // joined portal with the same back and front (conservative: no opening shrinks), and the join
