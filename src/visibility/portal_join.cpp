@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <deque>
 #include <iterator>
 #include <map>
+#include <numeric>
 #include <optional>
 #include <tuple>
 #include <utility>
@@ -19,9 +21,6 @@ namespace gv {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-/// Pieces of one group joined among themselves at most this many at a time (see below).
-constexpr size_t kMaxPiecesPerRun = 64;
 
 /// The boxes meet, grown by `slack`: pieces that do not cannot form a convex union.
 bool touch(const Aabb& a, const Aabb& b, double slack) {
@@ -78,32 +77,41 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
   // absorbedBy[i] = the portal whose polygon now covers portal i (i itself when kept).
   std::vector<uint32_t> absorbedBy(sub.portals.size());
   for (uint32_t i = 0; i < sub.portals.size(); ++i) absorbedBy[i] = i;
-  for (auto& [key, all] : groups) {
-    // Greedy passes until no two of the remaining pieces join (ids ascending: deterministic), in
-    // runs of at most kMaxPiecesPerRun pieces: the passes are cubic in the pieces at worst, and a
-    // hostile plane cut into thousands of pieces must not hang the run (pieces left apart only
-    // cost time).
-    for (size_t first = 0; first < all.size(); first += kMaxPiecesPerRun) {
-      std::vector<uint32_t> ids(all.begin() + static_cast<std::ptrdiff_t>(first),
-                                all.begin() + static_cast<std::ptrdiff_t>(
-                                                  std::min(all.size(), first + kMaxPiecesPerRun)));
-      for (bool joined = true; joined && ids.size() > 1;) {
-        joined = false;
-        for (size_t i = 0; i < ids.size(); ++i)
-          for (size_t j = i + 1; j < ids.size();) {
-            ConvexPolygon& a = sub.portals[ids[i]].polygon;
-            const ConvexPolygon& b = sub.portals[ids[j]].polygon;
-            std::optional<ConvexPolygon> u;
-            if (touch(a.bounds(), b.bounds(), tol.length())) u = unionIfConvex(a, b, tol);
-            if (!u) {
-              ++j;
-              continue;
-            }
-            a = std::move(*u);
-            absorbedBy[ids[j]] = ids[i];
-            ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(j));
-            joined = true;
-          }
+  for (auto& [key, ids] : groups) {
+    if (ids.size() < 2) continue;
+    // A work queue of pieces to try against all the others: a piece that grew goes back on it,
+    // so the queue empties only when no two pieces left join (a pair is tried again after either
+    // changes). At most pieces + joins scans of the group: quadratic, whatever the input. The
+    // joined polygon stays at the lower id (deterministic: ids ascending, queue in order).
+    const size_t k = ids.size();
+    std::vector<uint8_t> gone(k, 0), queued(k, 1);
+    std::vector<Aabb> box(k);
+    for (size_t m = 0; m < k; ++m) box[m] = sub.portals[ids[m]].polygon.bounds();
+    std::deque<size_t> queue(k);
+    std::iota(queue.begin(), queue.end(), size_t{0});
+    while (!queue.empty()) {
+      size_t i = queue.front();
+      queue.pop_front();
+      queued[i] = 0;
+      if (gone[i]) continue;
+      bool grew = false;
+      for (size_t j = 0; j < k; ++j) {
+        if (j == i || gone[j]) continue;
+        if (!touch(box[i], box[j], tol.length())) continue;
+        std::optional<ConvexPolygon> u =
+            unionIfConvex(sub.portals[ids[i]].polygon, sub.portals[ids[j]].polygon, tol);
+        if (!u) continue;
+        const size_t keep = std::min(i, j), drop = std::max(i, j);
+        box[keep] = u->bounds();
+        sub.portals[ids[keep]].polygon = std::move(*u);
+        gone[drop] = 1;
+        absorbedBy[ids[drop]] = ids[keep];
+        i = keep;  // scan on with the grown piece (the rest of j: the others are tried on requeue)
+        grew = true;
+      }
+      if (grew && !queued[i]) {
+        queue.push_back(i);
+        queued[i] = 1;
       }
     }
   }

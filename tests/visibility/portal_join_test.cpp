@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <random>
 #include <string>
 
 #include "bsp/hidden_faces.h"
@@ -73,25 +74,39 @@ TEST(PortalJoin, JoinsOnlyPiecesWhoseUnionIsConvex) {
   EXPECT_EQ(sub.cells[2].portals, (std::vector<uint32_t>{4}));
 }
 
-TEST(PortalJoin, AThousandPiecesOfOnePlaneJoinInBoundedRuns) {
-  // 1,000 unit squares in a row between the same two cells: joined 64 at a time (a bounded
-  // amount of work per run, whatever the input), into 16 rectangles covering the same area.
+TEST(PortalJoin, ThousandsOfPiecesOfOnePlaneJoinWhereTheyCan) {
+  // 2,000 unit squares between the same two cells, given in a shuffled order: a row of 1,000
+  // that joins into one 1,000 x 1 strip (whatever order the pieces come in), and 1,000 squares
+  // each a unit apart from the next, which must stay apart.
   Subdivision sub;
-  const Tolerance tol(2000);
+  const Tolerance tol(4000);
   sub.tree.tol = tol;
   sub.tree.nodes.push_back(BspNode{});
   sub.cells.resize(2);
-  for (int k = 0; k < 1000; ++k) {
-    sub.portals.push_back(rectPortal(0, k, 0, k + 1, 1, 0, 1, 0, tol));
-    sub.cells[0].portals.push_back(static_cast<uint32_t>(k));
-    sub.cells[1].portals.push_back(static_cast<uint32_t>(k));
+  std::vector<int> order(2000);
+  for (int k = 0; k < 2000; ++k) order[k] = k;
+  std::shuffle(order.begin(), order.end(), std::mt19937(5));
+  for (int k : order) {
+    if (k < 1000) {
+      sub.portals.push_back(rectPortal(0, k, 0, k + 1, 1, 0, 1, 0, tol));
+    } else {
+      const double y = 2.0 * (k - 1000);
+      sub.portals.push_back(rectPortal(0, y, 5, y + 1, 6, 0, 1, 0, tol));
+    }
+  }
+  for (uint32_t id = 0; id < sub.portals.size(); ++id) {
+    sub.cells[0].portals.push_back(id);
+    sub.cells[1].portals.push_back(id);
   }
   const PortalJoinStats stats = joinCoplanarPortals(sub);
-  EXPECT_EQ(stats.portalsAfter, 16u);
-  double area = 0;
-  for (const Portal& p : sub.portals) area += p.polygon.area();
-  EXPECT_NEAR(area, 1000.0, 1e-6);
-  EXPECT_NEAR(sub.portals[0].polygon.area(), 64.0, 1e-9);
+  EXPECT_EQ(stats.portalsAfter, 1001u);
+  double area = 0, largest = 0;
+  for (const Portal& p : sub.portals) {
+    area += p.polygon.area();
+    largest = std::max(largest, p.polygon.area());
+  }
+  EXPECT_NEAR(area, 2000.0, 1e-6);
+  EXPECT_NEAR(largest, 1000.0, 1e-6);
 }
 
 TEST(PortalJoin, EveryPieceOfARealLevelStaysInsideAPortalBetweenItsCells) {
