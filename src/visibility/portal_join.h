@@ -2,7 +2,7 @@
 // leaves many coplanar pieces of one opening (each the overlap of one leaf face on either side),
 // and every piece is a branch of every search through that opening. On real levels the merged
 // cells kept a third more portals than distinct openings (retrojam1_ericw.map: 3,593 portals, 2,443
-// distinct (cells, plane) pairs), and the cell search tried every order of them.
+// distinct (cells, BSP node) pairs), and the cell search tried every order of them.
 //
 // Pieces between the same two cells in the same plane are joined where the convex hull of two
 // of them is their union (its area is the sum of theirs). Conservative even where it is not
