@@ -22,9 +22,9 @@ struct PortalJoinStats {
 
 /// Joins, two at a time until no two can be, portals of `sub` linking the same two cells (same
 /// back and front) on the same BSP plane when the convex hull of both has no more area than the
-/// two (up to rounding): that hull is then their union, the new portal. The merged polygon keeps the first
-/// piece's plane (its normal still points from back into front). Portals are renumbered in the
-/// order of their first piece and each cell's portal list rebuilt. Deterministic.
+/// two (up to rounding): that hull is then their union, the new portal. The merged polygon keeps
+/// the first piece's plane (its normal still points from back into front). Portals are renumbered
+/// in the order of their first piece and each cell's portal list rebuilt. Deterministic.
 PortalJoinStats joinCoplanarPortals(Subdivision& sub);
 
 }  // namespace gv
