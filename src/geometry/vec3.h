@@ -108,6 +108,11 @@ struct Aabb {
     hi = max(hi, b.hi);
   }
   bool empty() const { return lo.x > hi.x; }
+  /// This box grown by `slack` on every side meets `o` (touching counts).
+  bool meets(const Aabb& o, double slack) const {
+    return lo.x <= o.hi.x + slack && o.lo.x <= hi.x + slack && lo.y <= o.hi.y + slack &&
+           o.lo.y <= hi.y + slack && lo.z <= o.hi.z + slack && o.lo.z <= hi.z + slack;
+  }
   Vec3 extent() const { return empty() ? Vec3{} : hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5; }
   double diagonal() const { return empty() ? 0.0 : length(hi - lo); }

@@ -26,11 +26,6 @@ Range rangeOf(std::span<const Vec3> points, const Vec3& n, const Vec3& o) {
 /// are one plane: rounding in the cross products of nearby vertices is ~1e-15 of the scene.
 constexpr double kRepeatedNormal = 1e-9;
 
-bool boxesMeet(const Aabb& a, const Aabb& b, double eps) {
-  return a.lo.x <= b.hi.x + eps && b.lo.x <= a.hi.x + eps && a.lo.y <= b.hi.y + eps &&
-         b.lo.y <= a.hi.y + eps && a.lo.z <= b.hi.z + eps && b.lo.z <= a.hi.z + eps;
-}
-
 }  // namespace
 
 PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Tolerance& tol)
@@ -72,7 +67,7 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
 }
 
 bool PairHull::boxMeets(const Aabb& bBox) const {
-  return boxesMeet(box_, bBox, eps_);
+  return box_.meets(bBox, eps_);
 }
 
 bool PairHull::separatesBox(const Aabb& box) const {
@@ -90,7 +85,7 @@ bool PairHull::separatesBox(const Aabb& box) const {
 }
 
 bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
-  return boxesMeet(box_, bBox, eps_) && meetsInBox(b);
+  return box_.meets(bBox, eps_) && meetsInBox(b);
 }
 
 bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n, double len) const {

@@ -22,12 +22,6 @@ namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-/// The boxes meet, grown by `slack`: pieces that do not cannot form a convex union.
-bool touch(const Aabb& a, const Aabb& b, double slack) {
-  return a.lo.x <= b.hi.x + slack && b.lo.x <= a.hi.x + slack && a.lo.y <= b.hi.y + slack &&
-         b.lo.y <= a.hi.y + slack && a.lo.z <= b.hi.z + slack && b.lo.z <= a.hi.z + slack;
-}
-
 /// The hull of `a` and `b` (in a's plane) when it is their union: its area exceeds theirs by no
 /// more than a band of the length tolerance along its boundary (the pieces' shared edges agree
 /// only to rounding).
@@ -74,9 +68,7 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
                               : -1 - int64_t{i};  // no node: never joined
     groups[{p.back, p.front, plane}].push_back(i);
   }
-  // absorbedBy[i] = the portal whose polygon now covers portal i (i itself when kept).
-  std::vector<uint32_t> absorbedBy(sub.portals.size());
-  for (uint32_t i = 0; i < sub.portals.size(); ++i) absorbedBy[i] = i;
+  std::vector<uint8_t> joinedAway(sub.portals.size(), 0);  // now inside another portal
   for (auto& [key, ids] : groups) {
     if (ids.size() < 2) continue;
     // A work queue of pieces to try against all the others: a piece that grew goes back on it,
@@ -97,7 +89,8 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
       bool grew = false;
       for (size_t j = 0; j < k; ++j) {
         if (j == i || gone[j]) continue;
-        if (!touch(box[i], box[j], tol.length())) continue;
+        // Pieces whose boxes do not touch cannot form a convex union.
+        if (!box[i].meets(box[j], tol.length())) continue;
         std::optional<ConvexPolygon> u =
             unionIfConvex(sub.portals[ids[i]].polygon, sub.portals[ids[j]].polygon, tol);
         if (!u) continue;
@@ -105,7 +98,7 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
         box[keep] = u->bounds();
         sub.portals[ids[keep]].polygon = std::move(*u);
         gone[drop] = 1;
-        absorbedBy[ids[drop]] = ids[keep];
+        joinedAway[ids[drop]] = 1;
         i = keep;  // scan on with the grown piece (the rest of j: the others are tried on requeue)
         grew = true;
       }
@@ -117,7 +110,7 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
   }
   std::vector<Portal> kept;
   for (uint32_t i = 0; i < sub.portals.size(); ++i)
-    if (absorbedBy[i] == i) kept.push_back(std::move(sub.portals[i]));
+    if (!joinedAway[i]) kept.push_back(std::move(sub.portals[i]));
   sub.portals = std::move(kept);
   for (Cell& cell : sub.cells) cell.portals.clear();
   for (uint32_t id = 0; id < sub.portals.size(); ++id) {
