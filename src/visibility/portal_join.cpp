@@ -28,10 +28,9 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 std::optional<ConvexPolygon> unionIfConvex(const ConvexPolygon& a, const ConvexPolygon& b,
                                            const Tolerance& tol) {
   const Plane& plane = a.plane;
-  const Vec3 n = plane.normal;
-  // (u, v, n) right-handed: counter-clockwise in (u, v) is counter-clockwise seen from the front.
-  const Vec3 u = normalize(std::abs(n.x) < 0.6 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0}));
-  const Vec3 v = cross(n, u);
+  // (u, v, normal) right-handed: counter-clockwise in (u, v) is counter-clockwise seen from the
+  // front.
+  const auto [u, v] = perpendicularFrame(plane.normal);
   const Vec3 origin = a.vertices[0];
   std::vector<Kernel::Point_2> points, hull;
   for (const ConvexPolygon* poly : {&a, &b})
