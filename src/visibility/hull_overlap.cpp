@@ -28,31 +28,33 @@ constexpr double kRepeatedNormal = 1e-9;
 
 }  // namespace
 
+void PairHull::addPlane(const Vec3& n, double c) {
+  for (size_t i = 0; i < c_.size(); ++i)
+    if (std::abs(nx_[i] - n.x) <= kRepeatedNormal && std::abs(ny_[i] - n.y) <= kRepeatedNormal &&
+        std::abs(nz_[i] - n.z) <= kRepeatedNormal && std::abs(c_[i] - c) <= eps_)
+      return;
+  nx_.push_back(n.x);
+  ny_.push_back(n.y);
+  nz_.push_back(n.z);
+  c_.push_back(c);
+}
+
+void PairHull::consider(const Vec3& n, const Vec3& o) {
+  const double len = length(n);
+  if (!(len > 0)) return;
+  const Vec3 u = n * (1 / len);
+  const Range h = rangeOf(hull_, u, o);
+  const double c = dot(u, o);
+  if (h.hi <= eps_) addPlane(u, c);     // hull behind: separates what lies in front
+  if (h.lo >= -eps_) addPlane(-u, -c);  // hull in front: separates what lies behind
+}
+
 PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Tolerance& tol)
-    : eps_(tol.length()) {
+    : eps_(tol.length()), separationMargin_(-0.5 * tol.length()) {
   box_ = s.bounds();
   box_.add(r.bounds());
   hull_ = s.vertices;
   hull_.insert(hull_.end(), r.vertices.begin(), r.vertices.end());
-  auto add = [&](const Vec3& n, double c) {
-    for (size_t i = 0; i < c_.size(); ++i)
-      if (std::abs(nx_[i] - n.x) <= kRepeatedNormal && std::abs(ny_[i] - n.y) <= kRepeatedNormal &&
-          std::abs(nz_[i] - n.z) <= kRepeatedNormal && std::abs(c_[i] - c) <= eps_)
-        return;
-    nx_.push_back(n.x);
-    ny_.push_back(n.y);
-    nz_.push_back(n.z);
-    c_.push_back(c);
-  };
-  auto consider = [&](const Vec3& n, const Vec3& o) {
-    const double len = length(n);
-    if (!(len > 0)) return;
-    const Vec3 u = n * (1 / len);
-    const Range h = rangeOf(hull_, u, o);
-    const double c = dot(u, o);
-    if (h.hi <= eps_) add(u, c);     // hull behind: separates what lies in front
-    if (h.lo >= -eps_) add(-u, -c);  // hull in front: separates what lies behind
-  };
   consider(s.plane.normal, s.vertices[0]);
   consider(r.plane.normal, r.vertices[0]);
   // Side planes through an edge of one polygon and a vertex of the other.
@@ -66,15 +68,42 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
   }
 }
 
+PairHull::PairHull(const ConvexPolygon& s, const Aabb& around, const Tolerance& tol)
+    : eps_(tol.length()), separationMargin_(3 * tol.length()) {
+  box_ = s.bounds();
+  box_.add(around);
+  hull_ = s.vertices;
+  Vec3 corners[8];
+  for (int k = 0; k < 8; ++k)
+    corners[k] = {(k & 1) ? around.hi.x : around.lo.x, (k & 2) ? around.hi.y : around.lo.y,
+                  (k & 4) ? around.hi.z : around.lo.z};
+  hull_.insert(hull_.end(), corners, corners + 8);
+  consider(s.plane.normal, s.vertices[0]);
+  // Side planes through an edge of s and a corner, and through an edge of the box and a vertex
+  // of s. Any subset of the hull's supporting planes would do: a missing one only separates less.
+  const auto& sv = s.vertices;
+  for (size_t i = 0; i < sv.size(); ++i) {
+    const Vec3 edge = sv[(i + 1) % sv.size()] - sv[i];
+    for (const Vec3& c : corners) consider(cross(edge, c - sv[i]), sv[i]);
+  }
+  for (int k = 0; k < 8; ++k)
+    for (int axis = 0; axis < 3; ++axis) {
+      if (k & (1 << axis)) continue;  // each edge once, from its low corner
+      const Vec3 edge = corners[k | (1 << axis)] - corners[k];
+      for (const Vec3& v : sv) consider(cross(edge, v - corners[k]), corners[k]);
+    }
+}
+
 bool PairHull::boxMeets(const Aabb& bBox) const {
   return box_.meets(bBox, eps_);
 }
 
 bool PairHull::separatesBox(const Aabb& box) const {
-  // The least n·x − c over the box, per plane, at the corner the normal points away from. Half
-  // the tolerance of margin: a vertex v in the box then has n·v − c >= −eps / 2 less rounding
-  // (~1e-16 of the scene), well above meetsInBox's −eps, so that plane separates its polygon.
-  const double margin = -0.5 * eps_;
+  // The least n·x − c over the box, per plane, at the corner the normal points away from. For a
+  // pair, half the tolerance of margin: a vertex v in the box then has n·v − c >= −eps / 2 less
+  // rounding (~1e-16 of the scene), well above meetsInBox's −eps, so that plane separates its
+  // polygon. For a shaft, see separationMargin_.
+  const double margin = separationMargin_;
   for (size_t i = 0; i < c_.size(); ++i) {
     const double least = (nx_[i] >= 0 ? nx_[i] * box.lo.x : nx_[i] * box.hi.x) +
                          (ny_[i] >= 0 ? ny_[i] * box.lo.y : ny_[i] * box.hi.y) +

@@ -21,6 +21,13 @@ namespace gv {
 class PairHull {
  public:
   PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Tolerance& tol);
+  /// The shaft of s and a group of receivers: conv(s ∪ box)'s side planes, for `separatesBox`
+  /// and `box` only. Every pair hull conv(s, r) with r inside `around` lies in it, so a patch
+  /// box this form separates can be dropped for all of the group's pairs with one test. Its
+  /// planes are not facets of those pair hulls, so it separates only boxes lying more than
+  /// twice the tolerance beyond the shaft: never a patch that meets a pair's hull grown by the
+  /// tolerance, as the pair's own tests count meeting.
+  PairHull(const ConvexPolygon& s, const Aabb& around, const Tolerance& tol);
   /// `bBox` is b's bounding box (callers testing many pairs keep them).
   bool meets(const ConvexPolygon& b, const Aabb& bBox) const;
   bool meets(const ConvexPolygon& b) const { return meets(b, b.bounds()); }
@@ -39,7 +46,8 @@ class PairHull {
   bool meetsInBox(std::span<const Vec3> vertices, const Vec3& normal, double normalLength) const;
   /// True when one side plane has all of `box` beyond it by at least half the tolerance: then
   /// meetsInBox is false for every polygon inside the box (that plane separates it). Lets a
-  /// query over many candidates skip whole groups of them (PatchGrid::gatherInto).
+  /// query over many candidates skip whole groups of them (PatchGrid::gatherInto). For the
+  /// shaft form, beyond by at least three times the tolerance (see its constructor).
   bool separatesBox(const Aabb& box) const;
   /// The hull's bounding box (not grown by the tolerance).
   const Aabb& box() const { return box_; }
@@ -54,6 +62,14 @@ class PairHull {
   std::vector<Vec3> hull_;
   Aabb box_;
   double eps_;
+  /// separatesBox's least distance beyond a plane: −eps / 2 for a pair (its planes are the
+  /// hull's facets, which meetsInBox tests at −eps), 3 eps for a shaft (its hull lies within eps
+  /// behind each plane, so a box this far beyond is 2 eps from every pair hull inside it).
+  double separationMargin_;
+
+  void addPlane(const Vec3& n, double c);
+  /// Keeps the plane with normal n through o if hull_ lies on one side of it (within eps).
+  void consider(const Vec3& n, const Vec3& o);
 };
 
 /// PairHull(s, r, tol).meets(b): the one-off form.

@@ -6,31 +6,45 @@
 
 namespace gv {
 
-bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const ConvexPolygon& r,
-                double margin) {
-  const Plane& plane = blocker.plane;
-  const double scale = length(plane.normal);  // distances in length units, whatever the normal
-  if (!(scale > 0)) return false;
-  const std::vector<Vec3>& b = blocker.vertices;
+OccluderSlab occluderSlab(const ConvexPolygon& blocker) {
+  OccluderSlab slab;
+  slab.scale = length(blocker.plane.normal);  // distances in length units, whatever the normal
   // A face the importer kept as one polygon may bend off its plane (by up to the planarity
   // tolerance of its diameter): the blocker is then any surface over its outline inside the slab
   // |distance| <= dev. A segment that enters the slab and leaves it inside the outline crosses
   // every such surface (intermediate values), so the crossings are taken with both faces of the
   // slab, and S and R must lie beyond it.
-  double dev = 0;
-  for (const Vec3& v : b) dev = std::max(dev, std::abs(plane.distance(v)));
-  if (!std::isfinite(dev)) return false;
-  const double reach = margin * scale + dev;  // in units of plane.distance
-  auto side = [&](const ConvexPolygon& p) {   // +1 / -1 when wholly beyond reach, else 0
-    const double first = plane.distance(p.vertices[0]);
-    const int sign = first > reach ? 1 : first < -reach ? -1 : 0;
-    if (sign == 0) return 0;
-    for (size_t k = 1; k < p.vertices.size(); ++k)
-      if (!(sign * plane.distance(p.vertices[k]) > reach)) return 0;
-    return sign;
-  };
-  const int ss = side(s);
-  if (ss == 0 || side(r) != -ss) return false;
+  for (const Vec3& v : blocker.vertices)
+    slab.dev = std::max(slab.dev, std::abs(blocker.plane.distance(v)));
+  if (!(slab.scale > 0) || !std::isfinite(slab.dev)) slab.usable = false;
+  return slab;
+}
+
+int sideOfSlab(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& p,
+               double margin) {
+  if (!slab.usable) return 0;
+  const Plane& plane = blocker.plane;
+  const double reach = margin * slab.scale + slab.dev;  // in units of plane.distance
+  const double first = plane.distance(p.vertices[0]);
+  const int sign = first > reach ? 1 : first < -reach ? -1 : 0;
+  if (sign == 0) return 0;
+  for (size_t k = 1; k < p.vertices.size(); ++k)
+    if (!(sign * plane.distance(p.vertices[k]) > reach)) return 0;
+  return sign;
+}
+
+bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& s,
+                   const ConvexPolygon& r, double margin) {
+  const Plane& plane = blocker.plane;
+  const std::vector<Vec3>& b = blocker.vertices;
+  const double dev = slab.dev;
+  // Where the segments between the vertices cross the slab's two faces: conv(S ∪ R) meets each
+  // face in the convex hull of these points. Found while the first edge is tested (most
+  // blockers fail there) and kept for the other edges when there is room.
+  constexpr size_t kKept = 64;
+  double kept[3 * kKept];  // x, y, z of each (plain doubles: not cleared on every call)
+  const size_t points = 2 * s.vertices.size() * r.vertices.size();
+  bool known = false;
   // The blocker's edges as inward half-planes across its plane: n × e points inside for a
   // counter-clockwise outline seen from the front (and is parallel to the plane, so the test
   // reads positions projected onto it).
@@ -39,15 +53,36 @@ bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const Conv
     const Vec3 inward = cross(plane.normal, b[(i + 1) % m] - b[i]);
     const double len = length(inward);
     if (!(len > 0)) return false;
+    const double least = margin * len;
+    if (known) {
+      for (size_t k = 0; k < points; ++k)
+        if (!(dot(inward, Vec3{kept[3 * k], kept[3 * k + 1], kept[3 * k + 2]} - b[i]) >= least))
+          return false;
+      continue;
+    }
+    size_t k = 0;
     for (const Vec3& p : s.vertices)
       for (const Vec3& q : r.vertices)
         for (const double level : {-dev, dev}) {
           const double dp = plane.distance(p) - level, dq = plane.distance(q) - level;
           const Vec3 x = p + (q - p) * (dp / (dp - dq));
-          if (!(dot(inward, x - b[i]) >= margin * len)) return false;
+          if (!(dot(inward, x - b[i]) >= least)) return false;
+          if (points <= kKept) {
+            kept[3 * k] = x.x, kept[3 * k + 1] = x.y, kept[3 * k + 2] = x.z;
+            ++k;
+          }
         }
+    known = points <= kKept;
   }
   return true;
+}
+
+bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const ConvexPolygon& r,
+                double margin) {
+  const OccluderSlab slab = occluderSlab(blocker);
+  const int ss = sideOfSlab(blocker, slab, s, margin);
+  return ss != 0 && sideOfSlab(blocker, slab, r, margin) == -ss &&
+         crossesInside(blocker, slab, s, r, margin);
 }
 
 }  // namespace gv

@@ -19,4 +19,23 @@ namespace gv {
 bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const ConvexPolygon& r,
                 double margin);
 
+/// hidesWhole in parts, for callers that test one blocker against many pairs (and one S against
+/// many blockers): the blocker's slab once, each polygon's side of it once, the crossings last.
+/// hidesWhole(b, s, r, m) == (ss = sideOfSlab(b, slab, s, m)) != 0 &&
+///   sideOfSlab(b, slab, r, m) == -ss && crossesInside(b, slab, s, r, m), slab = occluderSlab(b).
+struct OccluderSlab {
+  double scale = 0;    ///< the length of the plane's normal
+  double dev = 0;      ///< the vertices' largest distance from the plane, in its units
+  bool usable = true;  ///< false for a degenerate plane or a non-finite vertex: hides nothing
+};
+OccluderSlab occluderSlab(const ConvexPolygon& blocker);
+/// +1 (front) or -1 (back) when every vertex of `p` lies beyond the blocker's slab by more than
+/// `margin`, else 0.
+int sideOfSlab(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& p,
+               double margin);
+/// For S and R on opposite sides of the slab: every segment between them crosses both faces of
+/// the slab inside the outline shrunk by `margin`.
+bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& s,
+                   const ConvexPolygon& r, double margin);
+
 }  // namespace gv

@@ -264,6 +264,49 @@ TEST(BlockerHull, ASeparatedBoxHoldsNoMeetingPolygon) {
   EXPECT_GT(keptBoxes, 100);
 }
 
+TEST(BlockerHull, AShaftSeparatesOnlyWhatEveryPairHullMisses) {
+  // The shaft form conv(S ∪ box) drops a patch box for a whole group of receivers inside the
+  // box: checked with the brute-force oracle against each receiver's own hull conv(S ∪ R), on
+  // random polygons and on polygons placed across a segment from S to one of the receivers
+  // (those meet that hull, and the shaft must keep them).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  int separated = 0, kept = 0, across = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const ConvexPolygon s = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.5);
+    const Vec3 groupCenter = randomPoint(rng, 1.5);
+    std::vector<ConvexPolygon> receivers;
+    Aabb groupBox;
+    for (int k = 0; k < 4; ++k) {
+      receivers.push_back(
+          randomPolygon(rng, groupCenter + randomPoint(rng, 0.3), randomNormal(rng), 0.2));
+      groupBox.add(receivers.back().bounds());
+    }
+    const PairHull shaft(s, groupBox, kTol);
+    ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 2), randomNormal(rng), 0.2);
+    if (trial % 3 == 0) {  // across a segment from S to a receiver
+      const ConvexPolygon& r = receivers[trial % receivers.size()];
+      const double t = 0.1 + 0.8 * u(rng);
+      const Vec3 on = randomPointIn(rng, s) * (1 - t) + randomPointIn(rng, r) * t;
+      b = randomPolygon(rng, on, randomNormal(rng), 0.05);
+      ++across;
+    }
+    if (!shaft.separatesBox(b.bounds())) {
+      ++kept;
+      continue;
+    }
+    ++separated;
+    for (const ConvexPolygon& r : receivers) {
+      std::vector<Vec3> points = s.vertices;
+      points.insert(points.end(), r.vertices.begin(), r.vertices.end());
+      EXPECT_GT(separation(points, b).gap, 0) << "trial " << trial << ": b meets conv(S, R)";
+    }
+  }
+  EXPECT_GT(across, 400);
+  EXPECT_GT(separated, 300);  // both answers occur (in numbers)
+  EXPECT_GT(kept, 300);
+}
+
 TEST(BlockerGrid, AHullLeavesOutOnlyPatchesThatCannotMeetIt) {
   // gatherInto with a hull may drop the patches of cells the hull separates: it must keep every
   // patch whose polygon meets the hull (PairHull::meets) and drop some on these dense grids.
