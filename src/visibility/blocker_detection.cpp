@@ -54,6 +54,12 @@ constexpr size_t kMaxSeenBitsPatches = 16384;
 constexpr size_t kMaxGroup = 32;
 constexpr double kGroupSpread = 0.5;
 
+/// Blockers that hid a source's last pairs tried first on its next (BlockerDetection::
+/// hiddenByRecent); no pair's blockers are gathered when one of these hides it.
+constexpr size_t kRecentHiders = 4;
+/// addBlockers' answer for a pair no blocker hides whole.
+constexpr uint32_t kNoHider = UINT32_MAX;
+
 /// A chunk whose id array grew past this (16 MiB) gives it back after the hand-over instead of
 /// keeping it for reuse.
 constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
@@ -102,6 +108,7 @@ struct BlockerWorker {
   /// source's pairs meet the same blockers again and again; S's side of each is found once.
   std::vector<uint32_t> sideSource;
   std::vector<int8_t> sideOfSource;
+  std::vector<uint32_t> hiders;  ///< the blockers that hid the source's last pairs, latest first
 };
 
 /// What an entry (s, t) of seen(s) gives.
@@ -234,6 +241,7 @@ class BlockerDetection {
     for (uint32_t e : entries) w.seen[seenPatch(e)] = kFromS;
     w.kinds.resize(to - from);
     for (size_t k = from; k < to; ++k) w.kinds[k - from] = kindOf(s, entries[k]);
+    w.hiders.clear();
     for (size_t k = from; k < to;) {
       // The run [k, end) whose tested pairs make one group.
       Aabb groupBox;
@@ -246,31 +254,54 @@ class BlockerDetection {
         groupBox = grown;
         ++members;
       }
-      std::optional<std::span<const uint32_t>> group;
-      if (members >= 2) {
-        const PairHull shaft(sp, groupBox, tol_);
-        Aabb box = groupBox;
-        box.add(patchBoxes_[s]);
-        group.emplace(w.group.data(),
-                      grid_->gatherInto(box, tol_.length(), w.group.data(), &shaft));
-      }
+      std::optional<std::span<const uint32_t>> group;  // gathered for the first pair that asks
       for (; k < end; ++k) {
         const EntryKind kind = static_cast<EntryKind>(w.kinds[k - from]);
         if (kind == kNoPair) continue;
         const uint32_t t = seenPatch(entries[k]);
+        if (kind == kTested && hiddenByRecent(w, s, t)) {
+          ++chunk.hidden;
+          continue;
+        }
+        if (kind == kTested && members >= 2 && !group) {
+          const PairHull shaft(sp, groupBox, tol_);
+          Aabb box = groupBox;
+          box.add(patchBoxes_[s]);
+          group.emplace(w.group.data(),
+                        grid_->gatherInto(box, tol_.length(), w.group.data(), &shaft));
+        }
         BlockerLists& lists = chunk.lists;
         lists.addPair(s, t);  // its blockers are appended below, straight into the chunk
         if (kind == kSameCell) {
           ++chunk.sameCell;
-        } else if (addBlockers(w, s, t, group, lists)) {
+        } else if (const uint32_t hider = addBlockers(w, s, t, group, lists); hider != kNoHider) {
           lists.popPair();
           ++chunk.hidden;
+          rememberHider(w, hider);
           continue;
         }
         ++(lists.blockers(lists.size() - 1).empty() ? chunk.visible : chunk.partial);
       }
     }
     for (uint32_t e : entries) w.seen[seenPatch(e)] = 0;
+  }
+
+  /// Whether one of the blockers that hid the source's last pairs hides (s, t) whole too: the
+  /// next receivers are mostly neighbours of the last, behind the same wall. Exact (hidesWhole),
+  /// so the pair is INVISIBLE whether or not the wall is one of its own candidates; a hit moves
+  /// the blocker to the front.
+  bool hiddenByRecent(BlockerWorker& w, uint32_t s, uint32_t t) const {
+    const double margin = 2 * tol_.planeOffset();
+    for (size_t i = 0; i < w.hiders.size(); ++i)
+      if (hides(w, w.hiders[i], s, t, margin)) {
+        std::rotate(w.hiders.begin(), w.hiders.begin() + i, w.hiders.begin() + i + 1);
+        return true;
+      }
+    return false;
+  }
+  static void rememberHider(BlockerWorker& w, uint32_t c) {
+    if (w.hiders.size() == kRecentHiders) w.hiders.pop_back();
+    w.hiders.insert(w.hiders.begin(), c);
   }
 
   /// hidesWhole(c, S, T, margin), with c's slab prepared and S's side of it kept per source.
@@ -290,17 +321,17 @@ class BlockerDetection {
   /// The blockers of pair (s, t), appended to the last list of `lists`: the candidates meeting
   /// conv(S, T) seen from S (w.seen flags) or from T, taken from the grid or, when the pair is one
   /// of a group, from the candidates of the group's shaft (a superset of the grid's answer for
-  /// the pair, but for patches that miss conv(S, T) by twice the tolerance). Returns true, and
-  /// stops, at a blocker that hides all of T from all of S (single_occluder.h): the pair is then
-  /// INVISIBLE, though the portal searches could not tell (an occluder inside a cell, a search
-  /// past its budget).
-  bool addBlockers(BlockerWorker& w, uint32_t s, uint32_t t,
-                   const std::optional<std::span<const uint32_t>>& group,
-                   BlockerLists& lists) const {
+  /// the pair, but for patches that miss conv(S, T) by twice the tolerance). Stops at a blocker
+  /// that hides all of T from all of S (single_occluder.h): the pair is then INVISIBLE, though the
+  /// portal searches could not tell (an occluder inside a cell, a search past its budget): returns
+  /// that blocker, or kNoHider.
+  uint32_t addBlockers(BlockerWorker& w, uint32_t s, uint32_t t,
+                       const std::optional<std::span<const uint32_t>>& group,
+                       BlockerLists& lists) const {
     const ConvexPolygon& sp = scene_.patches[s].polygon;
     const ConvexPolygon& tp = scene_.patches[t].polygon;
     const double margin = 2 * tol_.planeOffset();
-    bool hidden = false;
+    uint32_t hidden = kNoHider;
     const PairHull hull(sp, tp, tol_);
     Aabb box = patchBoxes_[s];
     box.add(patchBoxes_[t]);
@@ -343,7 +374,7 @@ class BlockerDetection {
                                      vertices_.data() + vertexStart_[c + 1]);
       if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) {
         if (hides(w, c, s, t, margin)) {
-          hidden = true;
+          hidden = c;
           break;
         }
         lists.addBlocker(c);

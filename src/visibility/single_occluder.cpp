@@ -38,42 +38,51 @@ bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const
   const Plane& plane = blocker.plane;
   const std::vector<Vec3>& b = blocker.vertices;
   const double dev = slab.dev;
-  // Where the segments between the vertices cross the slab's two faces: conv(S ∪ R) meets each
-  // face in the convex hull of these points. Found while the first edge is tested (most
-  // blockers fail there) and kept for the other edges when there is room.
-  constexpr size_t kKept = 64;
-  double kept[3 * kKept];  // x, y, z of each (plain doubles: not cleared on every call)
-  const size_t points = 2 * s.vertices.size() * r.vertices.size();
-  bool known = false;
   // The blocker's edges as inward half-planes across its plane: n × e points inside for a
   // counter-clockwise outline seen from the front (and is parallel to the plane, so the test
-  // reads positions projected onto it).
+  // reads positions projected onto it). Prepared once (up to kEdges of them; plain doubles, not
+  // cleared on every call), then each crossing point is tested against all of them: a blocker
+  // that fails, as most do, fails at the first crossing point outside it.
+  constexpr size_t kEdges = 16;
   const size_t m = b.size();
-  for (size_t i = 0; i < m; ++i) {
-    const Vec3 inward = cross(plane.normal, b[(i + 1) % m] - b[i]);
+  double edge[4 * kEdges];  // per edge: inward x, y, z and margin times its length
+  auto inwardOf = [&](size_t i, Vec3& inward, double& least) {
+    inward = cross(plane.normal, b[(i + 1) % m] - b[i]);
     const double len = length(inward);
-    if (!(len > 0)) return false;
-    const double least = margin * len;
-    if (known) {
-      for (size_t k = 0; k < points; ++k)
-        if (!(dot(inward, Vec3{kept[3 * k], kept[3 * k + 1], kept[3 * k + 2]} - b[i]) >= least))
-          return false;
-      continue;
+    least = margin * len;
+    return len > 0;
+  };
+  if (m <= kEdges) {
+    for (size_t i = 0; i < m; ++i) {
+      Vec3 inward;
+      double least;
+      if (!inwardOf(i, inward, least)) return false;
+      edge[4 * i] = inward.x, edge[4 * i + 1] = inward.y, edge[4 * i + 2] = inward.z;
+      edge[4 * i + 3] = least;
     }
-    size_t k = 0;
-    for (const Vec3& p : s.vertices)
-      for (const Vec3& q : r.vertices)
-        for (const double level : {-dev, dev}) {
-          const double dp = plane.distance(p) - level, dq = plane.distance(q) - level;
-          const Vec3 x = p + (q - p) * (dp / (dp - dq));
-          if (!(dot(inward, x - b[i]) >= least)) return false;
-          if (points <= kKept) {
-            kept[3 * k] = x.x, kept[3 * k + 1] = x.y, kept[3 * k + 2] = x.z;
-            ++k;
-          }
-        }
-    known = points <= kKept;
   }
+  auto inside = [&](const Vec3& x) {
+    for (size_t i = 0; i < m; ++i) {
+      Vec3 inward;
+      double least;
+      if (m <= kEdges) {
+        inward = {edge[4 * i], edge[4 * i + 1], edge[4 * i + 2]};
+        least = edge[4 * i + 3];
+      } else if (!inwardOf(i, inward, least)) {
+        return false;
+      }
+      if (!(dot(inward, x - b[i]) >= least)) return false;
+    }
+    return true;
+  };
+  // Where the segments between the vertices cross the slab's two faces: conv(S ∪ R) meets each
+  // face in the convex hull of these points.
+  for (const Vec3& p : s.vertices)
+    for (const Vec3& q : r.vertices)
+      for (const double level : {-dev, dev}) {
+        const double dp = plane.distance(p) - level, dq = plane.distance(q) - level;
+        if (!inside(p + (q - p) * (dp / (dp - dq)))) return false;
+      }
   return true;
 }
 

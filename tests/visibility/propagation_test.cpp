@@ -285,6 +285,46 @@ TEST(PropagationBudget, SearchesOverBudgetAnswerWithSupersets) {
   expectConservative(scene, 20000, 4000, 9, {}, tight);
 }
 
+TEST(PropagationBudget, ReceiversHiddenWholeBehindOnePlateAreDropped) {
+  // A 0.2-wide source on the floor, a 1-wide plate at half height, the ceiling cut into 10 x 10
+  // patches. Worked by hand: every segment from the source to a ceiling point x crosses the
+  // plate's height at (s + x) / 2, inside the plate for every s exactly when x lies in
+  // [0.1, 1.9]^2: the 8 x 8 inner ceiling patches are hidden whole, the 36 around them are not.
+  // With budgets of one test the searches answer with every patch they might reach, so the
+  // blocker stage decides: the first hidden patch by its candidates, the next ones by the
+  // blocker that hid the last (BlockerDetection::hiddenByRecent).
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{10});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  b.addAxisRect(2, true, {0.9, 0.9, 0}, {1.1, 1.1, 0}, m);   // 0: the source, facing up
+  b.addAxisRect(2, false, {0.5, 0.5, 1}, {1.5, 1.5, 1}, m);  // 1: the plate, facing down
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)  // 2..101: the ceiling, facing down
+      b.addAxisRect(2, false, {0.2 * i, 0.2 * j, 2}, {0.2 * (i + 1), 0.2 * (j + 1), 2}, m);
+  PropagationOptions tight;
+  tight.cellSequenceBudget = tight.patchSequenceBudget = 1;
+  const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene), tight);
+  const auto index = indexOf(g);
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) {
+      const uint32_t r = uint32_t(2 + 10 * i + j);
+      const bool inner = i > 0 && i < 9 && j > 0 && j < 9;
+      EXPECT_EQ(index.count({0, r}), inner ? 0u : 1u) << "ceiling patch " << i << ", " << j;
+    }
+  EXPECT_GE(g.stats.pairsHiddenByOne, 64u);
+  // The ray oracle agrees: segments to a dropped patch all meet the plate first.
+  std::mt19937 rng(3);
+  for (uint32_t r = 2; r < 102; ++r) {
+    if (index.count({0, r})) continue;
+    for (int k = 0; k < 200; ++k) {
+      const Vec3 p = randomPointOn(scene.patches[0].polygon, rng);
+      const Vec3 q = randomPointOn(scene.patches[r].polygon, rng);
+      const auto hit = firstHit(scene, p, q - p, 1e-9, 1 - 1e-9, 0);
+      ASSERT_TRUE(hit && hit->patch == 1) << "a free segment to dropped patch " << r;
+    }
+  }
+}
+
 TEST(Propagation, SameOutputOnOneAndTwoThreads) {
   MazeOptions m;
   m.width = 3;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numbers>
 #include <random>
 #include <utility>
 #include <vector>
@@ -104,17 +105,32 @@ TEST(SingleOccluder, WhatItCallsHiddenHasNoFreeSegmentBySampling) {
       v.push_back(centre + a * (size * (x + 0.3 * u(rng))) + b * (size * (y + 0.3 * u(rng))));
     return ConvexPolygon::fromVertices(v, kTol);
   };
-  int hidden = 0, notHidden = 0;
+  auto randomDisc = [&](Vec3 centre, double size) {
+    // A turned 20-gon: more edges than crossesInside prepares at once.
+    const Vec3 n = normalize(Vec3{u(rng), u(rng), 4 + u(rng)});
+    const Vec3 a = normalize(cross(n, Vec3{1, 0, 0}));
+    const Vec3 b = cross(n, a);
+    std::vector<Vec3> v;
+    for (int k = 0; k < 20; ++k) {
+      const double t = 2 * std::numbers::pi * k / 20;
+      v.push_back(centre + a * (1.4 * size * std::cos(t)) + b * (1.4 * size * std::sin(t)));
+    }
+    return ConvexPolygon::fromVertices(v, kTol);
+  };
+  int hidden = 0, notHidden = 0, discsHidden = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const auto s = randomQuad({u(rng), u(rng), -2 + 0.5 * u(rng)}, 0.5);
     const auto r = randomQuad({u(rng), u(rng), 2 + 0.5 * u(rng)}, 0.5);
-    const auto b = randomQuad({0.5 * u(rng), 0.5 * u(rng), 0.3 * u(rng)}, 1.5);
+    const Vec3 centre{0.5 * u(rng), 0.5 * u(rng), 0.3 * u(rng)};
+    const bool disc = trial % 4 == 0;
+    const auto b = disc ? randomDisc(centre, 1.5) : randomQuad(centre, 1.5);
     if (!s || !r || !b) continue;
     if (!hidesWhole(*b, *s, *r, 1e-6)) {
       ++notHidden;
       continue;
     }
     ++hidden;
+    discsHidden += disc;
     Scene scene;
     scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
     scene.patches.push_back({*b, 0});
@@ -127,6 +143,7 @@ TEST(SingleOccluder, WhatItCallsHiddenHasNoFreeSegmentBySampling) {
   // Both answers occur often enough for the check to mean something.
   EXPECT_GT(hidden, 200);
   EXPECT_GT(notHidden, 200);
+  EXPECT_GT(discsHidden, 50);
 }
 
 }  // namespace
