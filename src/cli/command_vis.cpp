@@ -54,8 +54,12 @@ Action addVisCommand(CLI::App& app) {
   cmd->add_option("--patch-budget", s->propagation.patchSequenceBudget,
                   "Stabbing tests one source patch's search may run; past it, the branches not "
                   "yet explored are answered with every patch they might reach (0 = no limit; "
-                  "conservative either way)")
-      ->capture_default_str();
+                  "conservative either way). Default `auto`: the larger of 1000 and 1.2e7 / "
+                  "patches, so that small scenes get longer, tighter searches")
+      ->transform(
+          CLI::Transformer({{"auto", std::to_string(kAutoPatchSequenceBudget)}}).description(""))
+      ->type_name("UINT|auto")
+      ->default_str("auto");
   cmd->add_option("--target-checks", s->propagation.cellTargetChecks,
                   "Target checks in the cell-to-cell search (as `pvs --target-checks`): tests "
                   "per sequence pushed spent on dropping cells no line can enter (0 = none)")
@@ -131,8 +135,9 @@ Action addVisCommand(CLI::App& app) {
       fmt::print(
           "searches over budget (their unexplored branches answered with all they might "
           "reach): {} of {} directed portals (--cell-budget), {} of {} source patches "
-          "(--patch-budget)\n",
-          v.cellSearchesOverBudget, 2 * v.portals, v.patchSearchesOverBudget, v.patches);
+          "(--patch-budget {})\n",
+          v.cellSearchesOverBudget, 2 * v.portals, v.patchSearchesOverBudget, v.patches,
+          v.patchBudget);
     if (v.thinWallSlivers > 0)
       fmt::print("pieces of patches searched across one-sided walls they end against: {}\n",
                  v.thinWallSlivers);

@@ -183,7 +183,8 @@ class BlockerDetection {
                          std::vector<uint64_t>((n_ + 63) / 64, 0),
                          {},
                          std::vector<uint32_t>(n_, 0),
-                         std::vector<int8_t>(n_, 0)};
+                         std::vector<int8_t>(n_, 0),
+                         {}};
   }
 
   /// The pairs of the chunk's entries, with their blocker lists.
@@ -215,6 +216,7 @@ class BlockerDetection {
     return std::binary_search(v.begin(), v.end(), t);
   }
 
+  /// What entry `e` of seen(s) gives.
   EntryKind kindOf(uint32_t s, uint32_t e) const {
     const uint32_t t = seenPatch(e);
     if (t <= s) return kNoPair;

@@ -465,6 +465,7 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
   const PortalReach reach = cells.reach();
   const std::vector<CellSet>& cellReach = cells.cellReach;
   std::vector<PatchSearchResult> seen(n);
+  st.patchBudget = patchSequenceBudgetFor(options.patchSequenceBudget, n);
   std::atomic<size_t> done{0};
   std::mutex progressMutex;
   parallelFor(
@@ -472,7 +473,7 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
       [&] {
         PatchSearch w(sub, cellPatches, placements, reach, cellReach, tol);
         w.checkDeadline.deadline = options.deadline;
-        w.setBudget(options.patchSequenceBudget);
+        w.setBudget(st.patchBudget);
         return w;
       },
       [&](PatchSearch& w, size_t s) {

@@ -4,6 +4,8 @@
 // blocker_detection.h). Output: the conservative VisibilityGraph.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <functional>
 
 #include "bsp/subdivision.h"
@@ -24,7 +26,25 @@ namespace gv {
 /// merge, target checks cost more than they saved on the thin BSP cells of sector levels, and the
 /// budgets were 500 and 5,000.)
 inline constexpr uint64_t kDefaultCellSequenceBudget = 5000;
-inline constexpr uint64_t kDefaultPatchSequenceBudget = 1000;
+/// The patch searches' default budget follows the scene: each source may run
+/// max(kMinPatchSequenceBudget, kPatchTestsInAll / patches) tests, so that the searches together
+/// run about kPatchTestsInAll tests (a few seconds on two cores) past the minimum. On the Quake
+/// maps and sector levels most searches reach any budget (retrojam1: 3,832 of 4,529 sources at
+/// 1,000) and answer the rest of their branches with everything they might reach; a level with
+/// fewer patches can afford longer searches, and their exact answers shorten the lists (measured
+/// 2026-12-04, docs/BENCHMARKS.md: q3-dm4ish 12.8 % fewer pairs at 7,053 tests instead of 1,000,
+/// lqdm13 2.8 %, for 0.3-0.8 s).
+inline constexpr uint64_t kMinPatchSequenceBudget = 1000;
+inline constexpr uint64_t kPatchTestsInAll = 12'000'000;
+/// PropagationOptions::patchSequenceBudget's default: the budget above, from the patch count.
+inline constexpr uint64_t kAutoPatchSequenceBudget = UINT64_MAX;
+/// The per-source budget of the patch searches for option `budget` (kAutoPatchSequenceBudget:
+/// from the patch count; 0: no limit; else itself).
+inline uint64_t patchSequenceBudgetFor(uint64_t budget, size_t patches) {
+  if (budget != kAutoPatchSequenceBudget) return budget;
+  return std::max<uint64_t>(kMinPatchSequenceBudget,
+                            kPatchTestsInAll / std::max<uint64_t>(patches, 1));
+}
 inline constexpr double kDefaultCellTargetChecks = 100;
 
 struct PropagationOptions {
@@ -56,9 +76,10 @@ struct PropagationOptions {
   /// search has not explored yet are answered untested with everything they might reach, and the
   /// explored ones keep their answers: conservative either way (more listed, never less). They
   /// bound the time of the searches that fan out combinatorially on real levels. Counted in
-  /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget.
+  /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget. The patch searches'
+  /// default follows the patch count (patchSequenceBudgetFor; VisibilityStats::patchBudget).
   uint64_t cellSequenceBudget = kDefaultCellSequenceBudget;
-  uint64_t patchSequenceBudget = kDefaultPatchSequenceBudget;
+  uint64_t patchSequenceBudget = kAutoPatchSequenceBudget;
   /// The cell search's target checks (CellPvsOptions::targetCheckRatio; 0: none).
   double cellTargetChecks = kDefaultCellTargetChecks;
   /// Merge cells before searching (visibility/convex_merge.h: neighbours whose union is convex,

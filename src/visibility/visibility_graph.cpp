@@ -146,6 +146,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"cell_pairs_visible", s.cellPairsVisible},
       {"cell_searches_over_budget", s.cellSearchesOverBudget},
       {"patch_searches_over_budget", s.patchSearchesOverBudget},
+      {"patch_budget", s.patchBudget},
       {"cell_stabbing_tests", s.cellStabbingTests},
       {"patch_stabbing_tests", s.patchStabbingTests},
       {"patch_facing_rule_tests", s.patchFacingRuleTests},

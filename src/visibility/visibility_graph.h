@@ -49,6 +49,9 @@ struct VisibilityStats {
   /// Searches stopped by their budget and answered conservatively (PropagationOptions::
   /// cellSequenceBudget, patchSequenceBudget): directed portals of the cell search, source patches.
   uint64_t cellSearchesOverBudget = 0, patchSearchesOverBudget = 0;
+  /// The stabbing tests each patch search could run (0: no limit), as patchSequenceBudgetFor
+  /// resolved the option.
+  uint64_t patchBudget = 0;
   uint64_t cellStabbingTests = 0;   ///< portal-sequence tests of the cell-to-cell search
   uint64_t patchStabbingTests = 0;  ///< tests of the patch searches (portals and targets)
   /// Of those, target tests in the source's own cell decided by the two-polygon facing rule
