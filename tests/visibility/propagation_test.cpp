@@ -285,6 +285,21 @@ TEST(PropagationBudget, SearchesOverBudgetAnswerWithSupersets) {
   expectConservative(scene, 20000, 4000, 9, {}, tight);
 }
 
+TEST(PropagationBudget, TheDefaultPatchBudgetFollowsThePatchCount) {
+  EXPECT_EQ(patchSequenceBudgetFor(kAutoPatchSequenceBudget, 406), kPatchTestsInAll / 406);
+  EXPECT_EQ(patchSequenceBudgetFor(kAutoPatchSequenceBudget, 100000), kMinPatchSequenceBudget);
+  EXPECT_EQ(patchSequenceBudgetFor(kAutoPatchSequenceBudget, 0), kPatchTestsInAll);
+  EXPECT_EQ(patchSequenceBudgetFor(0, 406), 0u);  // no limit stays no limit
+  EXPECT_EQ(patchSequenceBudgetFor(20, 406), 20u);
+  MazeOptions m;
+  m.width = 3;
+  m.height = 3;
+  const Scene scene = generateMaze(m);
+  const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene));
+  EXPECT_EQ(g.stats.patchBudget, std::max<uint64_t>(kMinPatchSequenceBudget,
+                                                    kPatchTestsInAll / scene.patches.size()));
+}
+
 TEST(PropagationBudget, ReceiversHiddenWholeBehindOnePlateAreDropped) {
   // A 0.2-wide source on the floor, a 1-wide plate at half height, the ceiling cut into 10 x 10
   // patches. Worked by hand: every segment from the source to a ceiling point x crosses the
