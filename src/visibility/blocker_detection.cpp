@@ -39,9 +39,10 @@ constexpr uint8_t kFromS = 1, kFromT = 2;
 /// candidate; flags need a pass over seen(T) to set and one to clear).
 constexpr size_t kFlagsPerSearch = 4;
 
-/// Up to this many patches, every seen list is also kept as a row of bits (n² bits: 32 MiB at
-/// the limit), so that "seen from R" is one bit per candidate instead of a pass over seen(R) per
-/// pair to set flags and one to clear them.
+/// Up to this many patches, every seen list is also kept as two rows of bits (2 n² bits: 64 MiB
+/// at the limit), so that "seen from R" is one bit per candidate instead of a pass over seen(R)
+/// per pair to set flags and one to clear them, and "R saw S's front" one bit per pair instead
+/// of a binary search in seen(R) (a cache miss per level on lists of thousands).
 constexpr size_t kMaxSeenBitsPatches = 16384;
 
 /// Pairs of one source are taken in groups of up to this many receivers (consecutive in the
@@ -163,10 +164,13 @@ class BlockerDetection {
     if (n <= kMaxSeenBitsPatches) {
       seenWords_ = (n + 63) / 64;
       seenBits_.assign(n * seenWords_, 0);
+      frontBits_.assign(n * seenWords_, 0);
       for (size_t p = 0; p < n; ++p)
         for (uint32_t e : seen[p].seen) {
           const uint32_t c = seenPatch(e);
-          seenBits_[p * seenWords_ + (c >> 6)] |= uint64_t{1} << (c & 63);
+          const uint64_t bit = uint64_t{1} << (c & 63);
+          seenBits_[p * seenWords_ + (c >> 6)] |= bit;
+          if (seenFlags(e) & kSeenFront) frontBits_[p * seenWords_ + (c >> 6)] |= bit;
         }
     }
   }
@@ -211,6 +215,11 @@ class BlockerDetection {
     auto it = std::lower_bound(v.begin(), v.end(), seenEntry(t, 0));
     return (it != v.end() && seenPatch(*it) == t) ? seenFlags(*it) : 0;
   }
+  /// Whether t's search saw the front of s.
+  bool seesFront(uint32_t t, uint32_t s) const {
+    if (!frontBits_.empty()) return (frontBits_[size_t(t) * seenWords_ + (s >> 6)] >> (s & 63)) & 1;
+    return flagsOf(t, s) & kSeenFront;
+  }
   bool isSameCellVisible(uint32_t s, uint32_t t) const {
     const auto& v = seen_[s].sameCellVisible;
     return std::binary_search(v.begin(), v.end(), t);
@@ -222,7 +231,7 @@ class BlockerDetection {
     if (t <= s) return kNoPair;
     // Both searches are conservative and a sightline runs both ways, so a real pair is seen
     // front to front from each end: requiring both is exact pruning, not a guess.
-    const bool front = (seenFlags(e) & kSeenFront) && (flagsOf(t, s) & kSeenFront);
+    const bool front = (seenFlags(e) & kSeenFront) && seesFront(t, s);
     if (!front || !canFace(scene_.patches[s].polygon, scene_.patches[t].polygon, tol_.length()))
       return kNoPair;
     return (isSameCellVisible(s, t) || isSameCellVisible(t, s)) ? kSameCell : kTested;
@@ -402,6 +411,8 @@ class BlockerDetection {
   size_t seenWords_ = 0;
   /// Row p (seenWords_ words): the patches of seen(p); empty above kMaxSeenBitsPatches.
   std::vector<uint64_t> seenBits_;
+  /// Row p: the patches whose front p's search saw (kSeenFront); empty with seenBits_.
+  std::vector<uint64_t> frontBits_;
 };
 
 /// Chunks of kSeenPerChunk seen-list entries through a pipeline: worked on in parallel and
