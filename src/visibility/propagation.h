@@ -32,8 +32,8 @@ inline constexpr uint64_t kDefaultCellSequenceBudget = 5000;
 /// maps and sector levels most searches reach any budget (retrojam1: 3,832 of 4,529 sources at
 /// 1,000) and answer the rest of their branches with everything they might reach; a level with
 /// fewer patches can afford longer searches, and their exact answers shorten the lists (measured
-/// 2026-12-04, docs/BENCHMARKS.md: q3-dm4ish 12.8 % fewer pairs at 7,053 tests instead of 1,000,
-/// lqdm13 2.8 %, for 0.3-0.8 s).
+/// 2026-12-04, docs/BENCHMARKS.md: q3-dm4ish 12.7 % fewer pairs at 6,825 tests instead of 1,000,
+/// lqdm13 2.7 % at 9,646, for up to 0.8 s more).
 inline constexpr uint64_t kMinPatchSequenceBudget = 1000;
 inline constexpr uint64_t kPatchTestsInAll = 12'000'000;
 /// PropagationOptions::patchSequenceBudget's default: the budget above, from the patch count.
