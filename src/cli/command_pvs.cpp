@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "quake/prt_file.h"
@@ -71,22 +73,28 @@ Action addPvsCommand(CLI::App& app) {
     // The search runs over the clusters; the file is written per leaf.
     const CellPvsResult pvs = computeCellPvs(portalGraphOf(prt), options);
     bar.finish();
-    const LeafPvs leafs = expandToLeafs(prt, pvs.visibleCells);
+    const ClusterLeafRows leafs = clusterLeafRows(prt, pvs.visibleCells);
 
     std::FILE* out = std::fopen(s->output.c_str(), "w");
     if (!out) throw InputError(s->output, 0, "cannot write");
-    std::string line;
-    for (size_t l = 0; l < leafs.visibleLeafs.size(); ++l) {
-      const auto& row = leafs.visibleLeafs[l];
-      line = fmt::format("{} {}", l, row.size());
-      // fmt::format_int: no format string to parse per number (e3m4 writes 6.3 M of them).
-      for (uint32_t v : row) {
+    // Each cluster's row formatted once (" n v1 ... vn\n"), then written after the id of every
+    // leaf of the cluster: e3m4 formats 1.0 M numbers instead of 6.3 M.
+    std::vector<std::string> rowText(leafs.rows.size());
+    for (size_t c = 0; c < leafs.rows.size(); ++c) {
+      std::string& text = rowText[c];
+      text = fmt::format(" {}", leafs.rows[c].size());
+      for (uint32_t v : leafs.rows[c]) {
         const fmt::format_int digits(v);
-        line += ' ';
-        line.append(digits.data(), digits.size());
+        text += ' ';
+        text.append(digits.data(), digits.size());
       }
-      line += '\n';
-      std::fputs(line.c_str(), out);
+      text += '\n';
+    }
+    for (size_t l = 0; l < prt.leafCount; ++l) {
+      const fmt::format_int id(l);
+      std::fwrite(id.data(), 1, id.size(), out);
+      const std::string& text = rowText[static_cast<size_t>(prt.leafCluster[l])];
+      std::fwrite(text.data(), 1, text.size(), out);
     }
     const bool ok = std::ferror(out) == 0;
     if (std::fclose(out) != 0 || !ok) throw InputError(s->output, 0, "cannot write");

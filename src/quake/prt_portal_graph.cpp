@@ -15,22 +15,30 @@ PortalGraph portalGraphOf(const PrtFile& prt) {
   return graph;
 }
 
+ClusterLeafRows clusterLeafRows(const PrtFile& prt,
+                                const std::vector<std::vector<uint32_t>>& visibleClusters) {
+  ClusterLeafRows out;
+  out.rows.resize(prt.clusterCount);
+  for (size_t c = 0; c < prt.clusterCount; ++c) {
+    std::vector<uint32_t>& row = out.rows[c];
+    for (uint32_t d : visibleClusters[c])
+      for (int leaf : prt.clusterLeafs[d]) row.push_back(static_cast<uint32_t>(leaf));
+    std::sort(row.begin(), row.end());
+  }
+  double total = 0;
+  for (size_t l = 0; l < prt.leafCount; ++l)
+    total += static_cast<double>(out.ofLeaf(prt, l).size());
+  out.meanLeafsVisible = prt.leafCount ? total / static_cast<double>(prt.leafCount) : 0;
+  return out;
+}
+
 LeafPvs expandToLeafs(const PrtFile& prt,
                       const std::vector<std::vector<uint32_t>>& visibleClusters) {
-  std::vector<std::vector<uint32_t>> clusterRow(prt.clusterCount);
-  for (size_t c = 0; c < prt.clusterCount; ++c) {
-    for (uint32_t d : visibleClusters[c])
-      for (int leaf : prt.clusterLeafs[d]) clusterRow[c].push_back(static_cast<uint32_t>(leaf));
-    std::sort(clusterRow[c].begin(), clusterRow[c].end());
-  }
+  const ClusterLeafRows rows = clusterLeafRows(prt, visibleClusters);
   LeafPvs pvs;
   pvs.visibleLeafs.resize(prt.leafCount);
-  double total = 0;
-  for (size_t l = 0; l < prt.leafCount; ++l) {
-    pvs.visibleLeafs[l] = clusterRow[prt.leafCluster[l]];
-    total += static_cast<double>(pvs.visibleLeafs[l].size());
-  }
-  pvs.meanLeafsVisible = prt.leafCount ? total / static_cast<double>(prt.leafCount) : 0;
+  for (size_t l = 0; l < prt.leafCount; ++l) pvs.visibleLeafs[l] = rows.ofLeaf(prt, l);
+  pvs.meanLeafsVisible = rows.meanLeafsVisible;
   return pvs;
 }
 

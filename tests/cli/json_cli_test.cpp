@@ -9,9 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <sstream>
+#include <vector>
 
+#include "quake/prt_file.h"
+#include "quake/prt_portal_graph.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
+#include "visibility/cell_pvs.h"
 
 namespace gv {
 namespace {
@@ -109,13 +113,23 @@ TEST(JsonCli, PvsStatsMatchTheWrittenRows) {
                          " -o " + quoted(dir / "pvs.txt") + " --json");
   expectKeys(j,
              {"leafs", "clusters", "portals", "mean_leafs_visible", "stabbing_tests", "seconds"});
-  // Independently of the JSON: the rows written, one per leaf, `L n v1 ... vn`.
+  // Independently of the JSON: the rows written, one per leaf, `L n v1 ... vn`, each the row
+  // the library's PVS expanded leaf by leaf gives (the file is written per cluster: its 157
+  // leafs fall in 18 clusters).
+  const PrtFile prt = readPrtFile(kQuakeDir + "qbspfeatures.prt");
+  const LeafPvs expected = expandToLeafs(prt, computeCellPvs(portalGraphOf(prt)).visibleCells);
   std::ifstream in(dir / "pvs.txt");
   size_t rows = 0, total = 0;
   for (std::string line; std::getline(in, line); ++rows) {
     std::istringstream ls(line);
     size_t leaf = 0, n = 0;
     ls >> leaf >> n;
+    EXPECT_EQ(leaf, rows);
+    std::vector<uint32_t> row(n);
+    for (uint32_t& v : row) ls >> v;
+    EXPECT_TRUE(ls && (ls >> std::ws).eof()) << line;
+    ASSERT_LT(leaf, expected.visibleLeafs.size());
+    EXPECT_EQ(row, expected.visibleLeafs[leaf]) << "leaf " << leaf;
     total += n;
   }
   EXPECT_EQ(j["leafs"], rows);
