@@ -47,6 +47,7 @@ Action addRadiosityCommand(CLI::App& app) {
   };
   auto s = std::make_shared<State>();
   s->bsp.minCoverage = kVisibilityMinCoverage;  // the same cells as `vis`
+  s->options.maxLinks = 0;  // `auto` unless given: from the machine's memory (see below)
   cmd->add_option("scene", s->scene,
                   "Scene file (.obj with .mtl: Kd reflectance, Ke emission; or a Quake .map, or a "
                   "mesh Assimp reads)")
@@ -109,9 +110,13 @@ Action addRadiosityCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--max-links", s->options.maxLinks,
                   "Stop refining once this many links exist (a memory guard: links over the "
-                  "threshold are then kept as they are and the run is reported not converged)")
-      ->capture_default_str()
-      ->check(CLI::Range(size_t{1}, size_t{4'000'000'000}));
+                  "threshold are then kept as they are and the run is reported not converged; "
+                  "8 links between clusters count as one). Default `auto`: as many as 60 % of the "
+                  "machine's memory holds at ~160 bytes each, at least 20 M")
+      ->transform(CLI::Transformer({{"auto", "0"}}).description(""))
+      ->check(CLI::Range(size_t{0}, size_t{4'000'000'000}))
+      ->type_name("UINT|auto")
+      ->default_str("auto");
   cmd->add_option("--max-refinements", s->options.maxRefinements, "Refine/solve rounds at most")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--seed", s->options.seed, "Seed of the visibility samples");
@@ -138,6 +143,8 @@ Action addRadiosityCommand(CLI::App& app) {
     // "custom" quality.
     s->customQuality =
         epsilon->count() > 0 || relativeEpsilon->count() > 0 || clusterSamples->count() > 0;
+    // 0 is what `auto` parses to (a budget of no links would make nothing).
+    if (s->options.maxLinks == 0) s->options.maxLinks = linkBudgetForMemory(physicalMemoryBytes());
     const RadiosityOptions given = s->options;
     applyRadiosityQuality(parseRadiosityQuality(s->quality).value_or(kDefaultRadiosityQuality),
                           s->options);

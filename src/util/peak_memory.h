@@ -1,8 +1,10 @@
 // The process's peak resident memory, for the stats every long command reports, and a reset so
-// that one process (the bench) can measure the peak of each of its stages.
+// that one process (the bench) can measure the peak of each of its stages; and the machine's
+// physical memory, which memory guards scale with.
 #pragma once
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <string>
@@ -27,6 +29,13 @@ inline double peakResidentBytes() {
 inline bool resetPeakResident() {
   std::ofstream clear("/proc/self/clear_refs");
   return static_cast<bool>(clear << "5") && static_cast<bool>(clear.flush());
+}
+
+/// The machine's physical memory in bytes (sysconf), 0 where it cannot be read.
+inline double physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize)
+                                   : 0.0;
 }
 
 }  // namespace gv

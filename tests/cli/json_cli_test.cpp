@@ -13,8 +13,10 @@
 
 #include "quake/prt_file.h"
 #include "quake/prt_portal_graph.h"
+#include "radiosity/hierarchical_radiosity.h"
 #include "support/run_cli.h"
 #include "support/temp_dir.h"
+#include "util/peak_memory.h"
 #include "visibility/cell_pvs.h"
 
 namespace gv {
@@ -85,6 +87,10 @@ TEST_F(JsonCliTest, RadiosityQualityAndRunFigures) {
   EXPECT_EQ(draft["options"]["quality"], "draft");
   EXPECT_EQ(draft["options"]["epsilon"], 1e-3);
   EXPECT_EQ(draft["options"]["relative_epsilon"], 0.1);
+  // The link budget by default: from this machine's memory, never below the library's 20 M.
+  EXPECT_EQ(draft["options"]["max_links"].get<size_t>(),
+            linkBudgetForMemory(physicalMemoryBytes()));
+  EXPECT_GE(draft["options"]["max_links"].get<size_t>(), RadiosityOptions{}.maxLinks);
   const json& run = draft["run"];
   expectKeys(run, {"load_seconds", "visibility_seconds", "solve_seconds", "write_seconds",
                    "picture_seconds", "total_seconds", "peak_resident_bytes"});
@@ -95,6 +101,14 @@ TEST_F(JsonCliTest, RadiosityQualityAndRunFigures) {
   EXPECT_EQ(custom["options"]["quality"], "custom");
   EXPECT_EQ(custom["options"]["epsilon"], 0.0005);
   EXPECT_EQ(custom["options"]["relative_epsilon"], 0.03);
+  EXPECT_EQ(
+      runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "m") +
+              " --no-pictures --quality draft --max-links 123456 --json")["options"]["max_links"],
+      123456);
+  EXPECT_EQ(
+      runJson("radiosity " + quoted(obj_) + " -o " + quoted(dir_ / "m") +
+              " --no-pictures --quality draft --max-links auto --json")["options"]["max_links"],
+      draft["options"]["max_links"]);
   // A finer level makes more links.
   EXPECT_GT(custom["totals"]["links"].get<size_t>(), draft["totals"]["links"].get<size_t>());
   EXPECT_NE(

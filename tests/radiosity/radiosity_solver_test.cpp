@@ -153,6 +153,16 @@ TEST(RadiosityLinkBudgetTest, StopsRefiningAtTheBudgetAndSaysSo) {
     EXPECT_GE(capped.patchRadiosity[p].g, scene.materials[scene.patches[p].material].emission.g);
 }
 
+// The budget a machine's memory allows (by hand: 60 % of it at 160 bytes per link), never below
+// the library's default.
+TEST(RadiosityLinkBudgetTest, TheBudgetForAMachineIsSixtyPercentOfItsMemoryAt160BytesALink) {
+  const double gib = 1024.0 * 1024.0 * 1024.0;
+  EXPECT_EQ(linkBudgetForMemory(64 * gib), 257'698'037u);
+  EXPECT_EQ(linkBudgetForMemory(8 * gib), 32'212'254u);
+  EXPECT_EQ(linkBudgetForMemory(4 * gib), RadiosityOptions{}.maxLinks);  // 16.1 M: the floor
+  EXPECT_EQ(linkBudgetForMemory(0), RadiosityOptions{}.maxLinks);        // memory unknown
+}
+
 TEST(RadiosityElementTest, SplitsPartitionTheirParent) {
   const Tolerance tol{10};
   const std::vector<std::vector<Vec3>> shapes{
