@@ -1,6 +1,6 @@
 // The process's peak resident memory, for the stats every long command reports, and a reset so
 // that one process (the bench) can measure the peak of each of its stages; and the machine's
-// physical memory, which memory guards scale with.
+// memory (or its container's limit), which memory guards scale with.
 #pragma once
 
 #include <sys/resource.h>
@@ -31,11 +31,20 @@ inline bool resetPeakResident() {
   return static_cast<bool>(clear << "5") && static_cast<bool>(clear.flush());
 }
 
-/// The machine's physical memory in bytes (sysconf), 0 where it cannot be read.
+/// The memory this process may use, in bytes: the machine's physical memory (sysconf), or the
+/// limit of its control group if that is lower (a container: cgroup v2's memory.max, v1's
+/// memory.limit_in_bytes; "max" or a huge value means none). 0 where nothing can be read.
 inline double physicalMemoryBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize)
-                                   : 0.0;
+  double bytes =
+      pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : 0.0;
+  for (const char* path :
+       {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    std::ifstream in(path);
+    double limit = 0;
+    if (in >> limit && limit > 0 && (bytes == 0 || limit < bytes)) bytes = limit;
+  }
+  return bytes;
 }
 
 }  // namespace gv
