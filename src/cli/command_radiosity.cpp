@@ -144,7 +144,7 @@ Action addRadiosityCommand(CLI::App& app) {
     s->customQuality =
         epsilon->count() > 0 || relativeEpsilon->count() > 0 || clusterSamples->count() > 0;
     // 0 is what `auto` parses to (a budget of no links would make nothing).
-    if (s->options.maxLinks == 0) s->options.maxLinks = linkBudgetForMemory(physicalMemoryBytes());
+    if (s->options.maxLinks == 0) s->options.maxLinks = linkBudgetForMemory(usableMemoryBytes());
     const RadiosityOptions given = s->options;
     applyRadiosityQuality(parseRadiosityQuality(s->quality).value_or(kDefaultRadiosityQuality),
                           s->options);

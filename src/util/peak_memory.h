@@ -34,7 +34,7 @@ inline bool resetPeakResident() {
 /// The memory this process may use, in bytes: the machine's physical memory (sysconf), or the
 /// limit of its control group if that is lower (a container: cgroup v2's memory.max, v1's
 /// memory.limit_in_bytes; "max" or a huge value means none). 0 where nothing can be read.
-inline double physicalMemoryBytes() {
+inline double usableMemoryBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
   double bytes =
       pages > 0 && pageSize > 0 ? static_cast<double>(pages) * static_cast<double>(pageSize) : 0.0;

@@ -88,8 +88,7 @@ TEST_F(JsonCliTest, RadiosityQualityAndRunFigures) {
   EXPECT_EQ(draft["options"]["epsilon"], 1e-3);
   EXPECT_EQ(draft["options"]["relative_epsilon"], 0.1);
   // The link budget by default: from this machine's memory, never below the library's 20 M.
-  EXPECT_EQ(draft["options"]["max_links"].get<size_t>(),
-            linkBudgetForMemory(physicalMemoryBytes()));
+  EXPECT_EQ(draft["options"]["max_links"].get<size_t>(), linkBudgetForMemory(usableMemoryBytes()));
   EXPECT_GE(draft["options"]["max_links"].get<size_t>(), RadiosityOptions{}.maxLinks);
   const json& run = draft["run"];
   expectKeys(run, {"load_seconds", "visibility_seconds", "solve_seconds", "write_seconds",
