@@ -104,6 +104,7 @@ class Solver {
     radiosity_ = emission_;
     for (const Rgb& e : emission_) brightest_.push_back(maxChannel(e));
     gathered_.assign(scene.patches.size(), Rgb{});
+    changedAt_.assign(scene.patches.size(), 0);
     double area = 0;
     for (size_t k = 0; k < scene.patches.size(); ++k) {
       area += tree_[static_cast<uint32_t>(k)].area;
@@ -442,7 +443,12 @@ class Solver {
   void refineLinks(RefinementStats& round) {
     updateLeafSpread();
     std::vector<Link> pending = std::move(links_);
-    links_.clear();
+    // The links come back one by one; grown by doubling, links_ copied every link already kept
+    // and faulted in fresh pages at each step (at 10^7 links, half of a late round's time went
+    // to copying, a quarter to page faults). Capacity never touched costs no resident memory,
+    // so room for more than the round will make is reserved at once.
+    links_ = std::vector<Link>();
+    links_.reserve(pending.size() + pending.size() / 2 + kBatch);
     if (clusters_ && !stats_.linkBudgetReached) {
       // Cluster links whose bound now exceeds the threshold (the radiosities grew) are split;
       // the pairs of patches they reach join this round's links.
@@ -476,6 +482,7 @@ class Solver {
     }
     refinePending(pending, round, true);
     std::vector<LinkJob> jobs;
+    receiverPass_ = sourcePass_ = ConsistencyPass{};
     while (!stats_.linkBudgetReached &&
            (pushInconsistentLinks(jobs, round) || pushSourceInconsistentLinks(jobs, round))) {
       pending.clear();
@@ -505,7 +512,10 @@ class Solver {
   void refineClusters(std::vector<std::pair<uint32_t, uint32_t>> stack,
                       std::vector<LinkJob>& jobs) {
     const ClusterTree& tree = *clusters_;
-    std::vector<ClusterLink> made;
+    // The new cluster links go straight to the end of clusterLinks_ and are sampled a chunk at a
+    // time below: the 100k office makes 10^8 in its first round, and a list of them beside it
+    // and their samples all held at once were ~5 GB of its 8.1 GB peak.
+    const size_t first = clusterLinks_.size();
     while (!stack.empty()) {
       const auto [x, y] = stack.back();
       stack.pop_back();
@@ -525,12 +535,12 @@ class Solver {
         ++current_->clusterPairsInvisible;
         continue;
       }
-      if (links_.size() + jobs.size() + (clusterLinks_.size() + made.size()) / kClusterLinkShare >=
+      if (links_.size() + jobs.size() + clusterLinks_.size() / kClusterLinkShare >=
           options_.maxLinks)
         stats_.linkBudgetReached = true;
       if (stats_.linkBudgetReached ||
           clusterTransferBound(cx, cy, clusterBright_[x], clusterBright_[y]) <= threshold_) {
-        made.push_back({x, y});
+        clusterLinks_.push_back({x, y});
         continue;
       }
       if (cx.isLeaf() && cy.isLeaf()) {
@@ -551,21 +561,26 @@ class Solver {
     // Sources picked half by area, half by power as of now (brightest_'s first entries are the
     // patches' own elements).
     const SourcePicker sources(tree, std::span(brightest_).first(scene_.patches.size()));
-    std::vector<ClusterSampling> sampled(made.size());
-    parallelForEach(made.size(), [&](size_t i) {
-      sampled[i] = sampleClusterLink(tree, sources, tree_, *candidates_, visibility_, tol_,
-                                     made[i].x, made[i].y, options_.clusterSamples,
-                                     mixSeed(options_.seed ^ kClusterSeed, made[i].x, made[i].y));
-    });
-    for (size_t i = 0; i < made.size(); ++i) {
-      ClusterLink& c = made[i];
-      c.tapBegin = static_cast<uint32_t>(clusterTaps_.size());
-      c.tapCount = static_cast<uint32_t>(sampled[i].taps.size());
-      clusterTaps_.insert(clusterTaps_.end(), sampled[i].taps.begin(), sampled[i].taps.end());
-      current_->rays += sampled[i].rays;
-      clusterLinks_.push_back(c);
+    std::vector<ClusterSampling> sampled;
+    const size_t chunk = std::max<size_t>(options_.clusterSamplingChunk, 1);
+    for (size_t begin = first; begin < clusterLinks_.size(); begin += chunk) {
+      const size_t count = std::min(chunk, clusterLinks_.size() - begin);
+      sampled.assign(count, {});
+      parallelForEach(count, [&](size_t i) {
+        const ClusterLink& c = clusterLinks_[begin + i];
+        sampled[i] = sampleClusterLink(tree, sources, tree_, *candidates_, visibility_, tol_, c.x,
+                                       c.y, options_.clusterSamples,
+                                       mixSeed(options_.seed ^ kClusterSeed, c.x, c.y));
+      });
+      for (size_t i = 0; i < count; ++i) {
+        ClusterLink& c = clusterLinks_[begin + i];
+        c.tapBegin = static_cast<uint32_t>(clusterTaps_.size());
+        c.tapCount = static_cast<uint32_t>(sampled[i].taps.size());
+        clusterTaps_.insert(clusterTaps_.end(), sampled[i].taps.begin(), sampled[i].taps.end());
+        current_->rays += sampled[i].rays;
+      }
     }
-    current_->interactions += made.size();
+    current_->interactions += clusterLinks_.size() - first;
   }
 
   /// Drops the samples of cluster links that were split (they are only appended).
@@ -641,9 +656,15 @@ class Solver {
         const Link& l = stack[base + i];
         if (splits[i] == kNoElement || !subdivide(splits[i])) {
           links_.push_back(l);
-          continue;
+        } else {
+          replaceBy(l, splits[i], roots[base + i], jobs, round);
         }
-        replaceBy(l, splits[i], roots[base + i], jobs, round);
+        // The main pass is followed by passes over every element; only the consistency
+        // passes' own refinements need marking.
+        if (!report) {
+          touch(l.a);
+          touch(l.b);
+        }
       }
       children.clear();
       childRoots.clear();
@@ -679,10 +700,12 @@ class Solver {
       isExamined[e] = !tree_[static_cast<uint32_t>(e)].isLeaf() && maxChannel(radiosity_[e]) > 0;
     });
     auto examined = [&](uint32_t e) { return isExamined[e] != 0; };
+    const std::vector<char> changed = changedSince(receiverPass_);
+    auto looked = [&](uint32_t e) { return isExamined[e] != 0 && changed[e] != 0; };
     std::vector<uint32_t> linksAt(n + 1, 0);
     for (const Link& l : links_) {
-      if (examined(l.a)) ++linksAt[l.a + 1];
-      if (examined(l.b)) ++linksAt[l.b + 1];
+      if (looked(l.a)) ++linksAt[l.a + 1];
+      if (looked(l.b)) ++linksAt[l.b + 1];
     }
     for (size_t e = 0; e < n; ++e) linksAt[e + 1] += linksAt[e];
     std::vector<uint32_t> ends(linksAt[n]);
@@ -690,8 +713,8 @@ class Solver {
       std::vector<uint32_t> at(linksAt.begin(), linksAt.end() - 1);
       for (uint32_t i = 0; i < links_.size(); ++i) {
         const Link& l = links_[i];
-        if (examined(l.a)) ends[at[l.a]++] = i;
-        if (examined(l.b)) ends[at[l.b]++] = i;
+        if (looked(l.a)) ends[at[l.a]++] = i;
+        if (looked(l.b)) ends[at[l.b]++] = i;
       }
     }
     computeChildDeviations(examined);
@@ -726,12 +749,42 @@ class Solver {
                       RefinementStats& round) {
     size_t kept = 0;
     for (uint32_t i = 0; i < links_.size(); ++i) {
-      if (splitAt[i] == kNoElement)
+      if (splitAt[i] == kNoElement) {
         links_[kept++] = links_[i];
-      else
+      } else {
         replaceBy(links_[i], splitAt[i], 0, jobs, round);
+        touch(links_[i].a);
+        touch(links_[i].b);
+      }
     }
     links_.resize(kept);
+  }
+
+  /// Which elements a consistency pass must look at. Within a round the radiosities stay as the
+  /// last solve left them, so an element's verdict can change only when its links do: one
+  /// found consistent stays so, and one found inconsistent had links replaced (so changed).
+  /// The round's first pass of each kind looks at every element; later ones at those changed
+  /// since that kind's previous pass. (The 100k office ran ten passes a round, each a full
+  /// walk of 12.7 M links for a handful of replaced ones: two thirds of a late round.)
+  struct ConsistencyPass {
+    bool everything = true;  ///< the round's first pass: every element
+    uint32_t since = 0;      ///< else the elements with changedAt_ > since
+  };
+
+  /// Marks e's links as changed now.
+  void touch(uint32_t e) { changedAt_[e] = stamp_; }
+
+  /// Per element, whether `pass` must look at it; then starts the pass's next period.
+  std::vector<char> changedSince(ConsistencyPass& pass) {
+    ++current_->consistencyPasses;
+    std::vector<char> changed(tree_.size(), 1);
+    if (!pass.everything && options_.incrementalConsistency) {
+      const uint32_t since = pass.since;
+      parallelForEach(changed.size(), [&](size_t e) { changed[e] = changedAt_[e] > since; });
+    }
+    pass.everything = false;
+    pass.since = stamp_++;
+    return changed;
   }
 
   struct ConsistencyScratch {
@@ -839,17 +892,28 @@ class Solver {
   /// most to it are refined at the source. Links with taps gather at their samples
   /// already and are left out. Returns whether any link was replaced (by `jobs`).
   bool pushSourceInconsistentLinks(std::vector<LinkJob>& jobs, RefinementStats& round) {
-    computeSourceWeights();
+    std::vector<char> changed = changedSince(sourcePass_);
+    // A link whose source was cut since the last pass has its pieces now: its receiver's sum
+    // changes although its links did not.
+    for (const auto& [link, ofA] : computeSourceWeights())
+      changed[ofA ? links_[link].b : links_[link].a] = 1;
     struct Entry {
       uint32_t receiver = kNoElement, link = 0;
       double error = 0;  ///< relative to the receiver's radiosity, signed
     };
-    std::vector<Entry> entries(2 * links_.size());
-    parallelForEach(links_.size(), [&](size_t i) {
+    // The links into a receiver looked at, in link order (so each receiver's sum adds the same
+    // terms in the same order as over all links).
+    std::vector<uint32_t> looked;
+    for (uint32_t i = 0; i < links_.size(); ++i)
+      if (links_[i].tapCount == 0 && (changed[links_[i].a] || changed[links_[i].b]))
+        looked.push_back(i);
+    std::vector<Entry> entries(2 * looked.size());
+    parallelForEach(looked.size(), [&](size_t k) {
+      const uint32_t i = looked[k];
       const Link& l = links_[i];
-      if (l.tapCount > 0) return;
       for (const bool intoA : {true, false}) {
         const uint32_t receiver = intoA ? l.a : l.b, source = intoA ? l.b : l.a;
+        if (!changed[receiver]) continue;
         const uint32_t at = intoA ? l.sourcePiecesOfB : l.sourcePiecesOfA;
         if (at == UINT32_MAX || !canSplit(source)) continue;
         Rgb weighted{};
@@ -867,7 +931,7 @@ class Solver {
         const double f = intoA ? l.formFactorAB : l.formFactorBA;
         const double diff = rho.r * (weighted.r - mean.r) + rho.g * (weighted.g - mean.g) +
                             rho.b * (weighted.b - mean.b);
-        entries[2 * i + (intoA ? 0 : 1)] = {receiver, static_cast<uint32_t>(i), f * diff / level};
+        entries[2 * k + (intoA ? 0 : 1)] = {receiver, i, f * diff / level};
       }
     });
     std::erase_if(entries, [](const Entry& e) { return e.receiver == kNoElement || e.error == 0; });
@@ -901,8 +965,8 @@ class Solver {
   /// variation: a floor-to-ceiling pillar face cut in two has two halves of the same mean when
   /// the lamp sits at the height of the cut, while a ceiling sees only the dark top of the upper
   /// half. Geometry only: kept in sourcePieces_ (Link::sourcePiecesOfA/B: a count, then the
-  /// pieces), new ones computed in parallel.
-  void computeSourceWeights() {
+  /// pieces), new ones computed in parallel. Returns the (link, of its a) ends it computed.
+  std::vector<std::pair<uint32_t, bool>> computeSourceWeights() {
     struct Missing {
       uint32_t link;
       bool ofA;
@@ -956,10 +1020,19 @@ class Solver {
         out[c].weight = static_cast<float>(total > 0 ? out[c].weight / total
                                                      : tree_[m.pieces[c]].area / e.area);
     });
+    std::vector<std::pair<uint32_t, bool>> filled;
+    filled.reserve(missing.size());
+    for (const Missing& m : missing) filled.emplace_back(m.link, m.ofA);
+    return filled;
   }
 
   /// Drops the taps of links that refinement replaced (they are only appended).
   void compactTaps() {
+    // Nothing to drop when every tap is still some link's (late rounds replace few links, and
+    // copying the 100k office's taps took 1.5 s a round); where they lie does not matter.
+    size_t used = 0;
+    for (const Link& l : links_) used += l.tapCount;
+    if (used == taps_.size()) return;
     std::vector<Tap> kept;
     kept.reserve(taps_.size());
     for (Link& l : links_) {
@@ -980,6 +1053,7 @@ class Solver {
       radiosity_.resize(tree_.size(), inherited);
       brightest_.resize(tree_.size(), brightest_[e]);
       gathered_.resize(tree_.size(), Rgb{});
+      changedAt_.resize(tree_.size(), stamp_);
     }
     return true;
   }
@@ -1196,6 +1270,11 @@ class Solver {
   std::vector<double> leafSpread_;         ///< per element, leaves only (updateLeafSpread)
   std::vector<SourcePiece> sourcePieces_;  ///< computeSourceWeights' (Link::sourcePiecesOfA/B)
   std::vector<double> deviationPool_;  ///< computeChildDeviations' values (Link::deviationsAtA/B)
+  /// Per element, the stamp of the last change to its links within a round (a link at it added
+  /// or replaced); see ConsistencyPass. Elements made later start at the stamp of their making.
+  std::vector<uint32_t> changedAt_;
+  uint32_t stamp_ = 1;
+  ConsistencyPass receiverPass_, sourcePass_;
   std::vector<Rgb> emission_, reflectance_;  ///< per patch
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
   std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)

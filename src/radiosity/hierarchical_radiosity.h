@@ -100,7 +100,15 @@ struct RadiosityOptions {
   /// a cluster link; 0: no clustering, every candidate pair of patches gets an exact link at the
   /// top (HSA91). Oracles that cannot test single segments (`shaft`) run without clusters.
   int clusterSamples = 0;
+  /// New cluster links are sampled this many at a time, their samples held meanwhile (the 100k
+  /// office makes 10^8 in its first round). The solution does not depend on it.
+  size_t clusterSamplingChunk = 4096;
   FormFactorOptions formFactor;
+  /// A consistency pass after the round's first looks only at the elements whose links changed
+  /// since the previous pass of its kind (the others keep their verdict: the radiosities stay
+  /// put within a round). false: every pass looks at every element, for tests that check the
+  /// two give the same solution.
+  bool incrementalConsistency = true;
   /// Called with one line of progress per round (for stderr); may be empty.
   std::function<void(const std::string&)> progress;
   /// Called during each refinement round with (links of the round's start finished, their
@@ -137,7 +145,10 @@ struct RefinementStats {
   LinkCounts created;
   LinkCounts links;         ///< links alive after the round
   size_t linksRefined = 0;  ///< links replaced by children this round
-  size_t elements = 0;      ///< elements after the round (patches + all children)
+  /// Consistency passes run after the round's main pass (receiver and source passes, each
+  /// counted; the last of each found nothing to refine).
+  size_t consistencyPasses = 0;
+  size_t elements = 0;  ///< elements after the round (patches + all children)
   size_t leaves = 0;
   size_t interactions = 0;  ///< form factor + visibility evaluations this round
   uint64_t rays = 0;        ///< visibility rays cast this round

@@ -72,6 +72,7 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
                       {"links_created", countsJson(r.created)},
                       {"links", countsJson(r.links)},
                       {"links_refined", r.linksRefined},
+                      {"consistency_passes", r.consistencyPasses},
                       {"cluster_links", r.clusterLinks},
                       {"cluster_taps", r.clusterTaps},
                       {"cluster_pairs_invisible", r.clusterPairsInvisible},
