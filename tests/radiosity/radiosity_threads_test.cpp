@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "bsp/subdivision.h"
@@ -29,10 +30,11 @@
 namespace gv {
 namespace {
 
-/// The scene and what each mode needs beside it; makes a fresh oracle per solve (oracles keep
+/// A scene and what each mode needs beside it; makes a fresh oracle per solve (oracles keep
 /// state: tubes, statistics).
 struct Modes {
-  Scene scene = generateCornellBox();
+  explicit Modes(Scene s) : scene(std::move(s)) {}
+  Scene scene;
   EmbreeScene bvh{scene};
   VisibilityGraph graph = [this] {
     PropagationOptions p;
@@ -44,10 +46,14 @@ struct Modes {
     if (mode == "shaft") return std::make_unique<ShaftVisibility>(scene, 8);
     return std::make_unique<BlockerVisibility>(scene, graph, 8);
   }
+  RadiosityResult solve(const std::string& mode, const RadiosityOptions& options) const {
+    return solveRadiosity(scene, *make(mode), options);
+  }
 };
 
+/// The Cornell box.
 const Modes& modes() {
-  static const Modes m;
+  static const Modes m(generateCornellBox());
   return m;
 }
 
@@ -125,35 +131,16 @@ TEST_P(RadiosityThreadsTest, SolutionIsTheSameOnOneTwoAndThreeThreads) {
 
 INSTANTIATE_TEST_SUITE_P(Modes, RadiosityThreadsTest, testing::Values("rays", "shaft", "blockers"));
 
-/// The furnished room (thousands of cluster links) and what the two modes that answer single
-/// segments need beside it; solves with a fresh oracle each time.
-struct FurnishedRoom {
-  Scene scene = generateFurnishedRoom();
-  EmbreeScene bvh{scene};
-  VisibilityGraph graph = [this] {
-    PropagationOptions p;
-    p.threads = 1;
-    return computeVisibility(scene, buildSubdivision(scene), p);
-  }();
-  RadiosityResult solve(const std::string& mode, const RadiosityOptions& options) const {
-    std::unique_ptr<LinkVisibility> visibility;
-    if (mode == "rays")
-      visibility = std::make_unique<RayVisibility>(scene, bvh, 8);
-    else
-      visibility = std::make_unique<BlockerVisibility>(scene, graph, 8);
-    return solveRadiosity(scene, *visibility, options);
-  }
-};
-
-const FurnishedRoom& furnishedRoom() {
-  static const FurnishedRoom room;
+/// The furnished room: thousands of cluster links.
+const Modes& furnishedRoom() {
+  static const Modes room(generateFurnishedRoom());
   return room;
 }
 
 TEST(RadiosityThreadsTest, ClusteredSolutionIsTheSameOnOneAndTwoThreads) {
   // Cluster links are sampled in parallel and kept in order: the furnished room in both modes
   // that answer single segments; and sampled in chunks of any size.
-  const FurnishedRoom& room = furnishedRoom();
+  const Modes& room = furnishedRoom();
   RadiosityOptions options;
   options.maxRefinements = 1;
   options.epsilon = 1e-3;
@@ -184,7 +171,7 @@ TEST(RadiosityConsistencyTest, PassesOverChangedElementsOnlyGiveTheSameSolutionA
   // After a round's first consistency passes, later ones look only at the elements whose links
   // changed since (RadiosityOptions::incrementalConsistency): the solution must be the one that
   // passes over every element give, bit for bit, in each mode with consistency refinements.
-  const FurnishedRoom& room = furnishedRoom();
+  const Modes& room = furnishedRoom();
   RadiosityOptions options;
   applyRadiosityQuality(RadiosityQuality::Low, options);
   options.maxRefinements = 2;
