@@ -146,7 +146,7 @@ struct RefinementStats {
   LinkCounts links;         ///< links alive after the round
   size_t linksRefined = 0;  ///< links replaced by children this round
   /// Consistency passes run after the round's main pass (receiver and source passes, each
-  /// counted; the last of each found nothing to refine).
+  /// counted; unless the link budget stopped them, the last of each found nothing to refine).
   size_t consistencyPasses = 0;
   size_t elements = 0;  ///< elements after the round (patches + all children)
   size_t leaves = 0;
