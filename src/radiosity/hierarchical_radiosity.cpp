@@ -699,7 +699,6 @@ class Solver {
     parallelForEach(n, [&](size_t e) {
       isExamined[e] = !tree_[static_cast<uint32_t>(e)].isLeaf() && maxChannel(radiosity_[e]) > 0;
     });
-    auto examined = [&](uint32_t e) { return isExamined[e] != 0; };
     const std::vector<char> changed = changedSince(receiverPass_);
     auto looked = [&](uint32_t e) { return isExamined[e] != 0 && changed[e] != 0; };
     std::vector<uint32_t> linksAt(n + 1, 0);
@@ -708,16 +707,26 @@ class Solver {
       if (looked(l.b)) ++linksAt[l.b + 1];
     }
     for (size_t e = 0; e < n; ++e) linksAt[e + 1] += linksAt[e];
+    // The same walk finds the ends looked at whose deviations are not yet known: a pass needs
+    // only its own elements' (inconsistentLinksAt reads no other), and a second walk of every
+    // link for them cost as much as this one.
     std::vector<uint32_t> ends(linksAt[n]);
+    std::vector<LinkEnd> missing;
     {
       std::vector<uint32_t> at(linksAt.begin(), linksAt.end() - 1);
       for (uint32_t i = 0; i < links_.size(); ++i) {
         const Link& l = links_[i];
-        if (looked(l.a)) ends[at[l.a]++] = i;
-        if (looked(l.b)) ends[at[l.b]++] = i;
+        if (looked(l.a)) {
+          ends[at[l.a]++] = i;
+          if (l.deviationsAtA == UINT32_MAX) missing.push_back({i, true});
+        }
+        if (looked(l.b)) {
+          ends[at[l.b]++] = i;
+          if (l.deviationsAtB == UINT32_MAX) missing.push_back({i, false});
+        }
       }
     }
-    computeChildDeviations(examined);
+    computeChildDeviations(missing);
     // Per element, the links to refine, in parallel (each reads only); a link wanted at both
     // ends is split at the lower element id.
     std::vector<uint32_t> elements;
@@ -842,28 +851,22 @@ class Solver {
     return out;
   }
 
-  /// Per child c of an end e of a link (e `examined`: with children): the link's mean form
-  /// factor into e minus the point form factor at c's centroid. Geometry only, so computed once
-  /// per link end and kept in deviationPool_ (Link::deviationsAtA/B): the consistency passes
-  /// revisit the same links every pass and every round. The new ones are placed in link order,
-  /// then computed in parallel.
-  template <typename Examined>
-  void computeChildDeviations(const Examined& examined) {
-    struct Missing {
-      uint32_t link;
-      bool atA;
-    };
-    std::vector<Missing> missing;
-    for (uint32_t i = 0; i < links_.size(); ++i) {
-      Link& l = links_[i];
-      for (const bool atA : {true, false}) {
-        const uint32_t e = atA ? l.a : l.b;
-        uint32_t& at = atA ? l.deviationsAtA : l.deviationsAtB;
-        if (at != UINT32_MAX || !examined(e)) continue;
-        at = static_cast<uint32_t>(deviationPool_.size());
-        deviationPool_.resize(deviationPool_.size() + tree_[e].childCount);
-        missing.push_back({i, atA});
-      }
+  /// An end of links_[link]: its a end (atA) or its b end.
+  struct LinkEnd {
+    uint32_t link;
+    bool atA;
+  };
+
+  /// Per child c of each end e in `missing` (e with children): the link's mean form factor into
+  /// e minus the point form factor at c's centroid. Geometry only, so computed once per link end
+  /// and kept in deviationPool_ (Link::deviationsAtA/B): the consistency passes revisit the same
+  /// links every pass and every round. Placed in the order of `missing`, computed in parallel.
+  void computeChildDeviations(const std::vector<LinkEnd>& missing) {
+    for (const LinkEnd& m : missing) {
+      Link& l = links_[m.link];
+      const uint32_t e = m.atA ? l.a : l.b;
+      (m.atA ? l.deviationsAtA : l.deviationsAtB) = static_cast<uint32_t>(deviationPool_.size());
+      deviationPool_.resize(deviationPool_.size() + tree_[e].childCount);
     }
     parallelForEach(missing.size(), [&](size_t m) {
       const Link& l = links_[missing[m].link];
