@@ -13,9 +13,9 @@
 // - Hidden surfaces: a face's parts inside another solid, or flat against an opposite-facing face
 //   of one (two solids touching), are removed; of two coincident same-facing faces exactly one
 //   is kept (that of the brush first in a fixed order: by least x, then file order).
-//   func_detail_wall brushes hide nothing of other entities (ericw-tools: they do not clip the
-//   world), so the faces behind their skip sides stay; of their own entity's faces they drop
-//   those they hide whole (between two of its brushes touching face to face), cutting none. Coplanarity is decided within the model tolerance
+//   func_detail_wall brushes clip nothing (ericw-tools: they do not clip the world), so the
+//   faces behind their skip sides stay; one without a skip side is closed, and the faces it
+//   hides whole (inside it, or flat against it face to face) are dropped, none cut. Coplanarity is decided within the model tolerance
 //   (Tolerance::planeOffset), the one the BSP uses to merge planes.
 // - Materials: one per texture name; Kd from a hash of the lower-cased name (see textureColour).
 // - Lights: light and light_* entities → an outward cube of lightCubeSize at "origin", emitted
@@ -172,10 +172,9 @@ struct Solid {
   bool sky = false;
   /// False for func_detail_wall, which by ericw-tools' definition does not clip the faces of
   /// other brushes (those stay drawn behind it; it often has skip faces that rely on them).
-  /// It still hides the faces of its own entity's brushes buried in it or flat against it
-  /// face to face (see visibleOf).
+  /// Without a skip side it still drops the faces it hides whole (see visibleOf).
   bool hidesOthers = true;
-  size_t entity = 0;  ///< index of the brush's entity in the map
+  bool skipSide = false;  ///< some face of the solid is textured skip (not drawn: it is open)
 };
 
 /// The parts of `face` that no solid other than `self` hides. Solids are sorted by box.lo.x.
@@ -185,15 +184,14 @@ std::vector<ConvexPolygon> visibleOf(const ConvexPolygon& face, size_t self,
   const double on = tol.planeOffset();
   std::vector<ConvexPolygon> parts{face};
   for (size_t j = 0; j < solids.size() && !parts.empty(); ++j) {
-    // A func_detail_wall brush hides faces of its own entity's other brushes: those between
-    // two of its brushes touching face to face are inside the entity's solid, and no light
-    // reaches them (e3m4: such a face, flush with a third brush side, let `verify`'s rays
-    // leave it across that side within the contact distance: 4 pairs missed in 10^6 rays).
-    // Only faces it hides whole, which are dropped (cutting them into visible pieces, as the
-    // world's brushes do, made e3m4 16 % more patches). Not where two faces share a surface
-    // facing one way: that tie may hide a drawn face in favour of a skip side.
-    const bool ownEntity = solids[j].entity == solids[self].entity;
-    if (j == self || (!solids[j].hidesOthers && !ownEntity)) continue;
+    // A func_detail_wall brush does not clip other faces (see Solid::hidesOthers), but one with
+    // no skip side is closed: a face it hides whole, inside it or flat against it face to
+    // face, gets no light and is dropped (e3m4: such faces, flush with a brush side, let
+    // `verify`'s rays leave them across that side within the contact distance: 4 pairs missed
+    // in 10^6 rays). Faces it hides in part stay whole, not cut (cutting them, as the world's
+    // brushes do, made e3m4 16 % more patches), and where two faces share a surface facing one
+    // way both stay (that tie could drop a drawn face for a skip side).
+    if (j == self || (!solids[j].hidesOthers && solids[j].skipSide)) continue;
     const Aabb& ob = solids[j].solid.box;
     if (ob.lo.x > fb.hi.x + on) break;
     if (ob.hi.x < fb.lo.x - on || ob.lo.y > fb.hi.y + on || ob.hi.y < fb.lo.y - on ||
@@ -244,7 +242,6 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
   // 1. Which brushes are solid.
   std::vector<std::pair<const MapBrush*, uint32_t>> chosen;  // brush, first global side index
   std::vector<bool> chosenSky, chosenHides;
-  std::vector<size_t> chosenEntity;
   Aabb pointBox;
   uint32_t sideIndex = 0;
   for (const MapEntity& e : map.entities) {
@@ -289,7 +286,6 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
       }
       chosen.emplace_back(&b, first);
       chosenHides.push_back(lower(e.className()) != "func_detail_wall");
-      chosenEntity.push_back(static_cast<size_t>(&e - map.entities.data()));
       for (const MapBrushSide& s : b.sides)
         for (const Vec3& p : s.points) pointBox.add(p);
     }
@@ -314,9 +310,11 @@ Scene mapToScene(const MapFile& map, const std::string& path, const MapImportOpt
       continue;
     }
     solids.push_back(
-        {std::move(*s), chosen[i].first, chosen[i].second, chosenSky[i], chosenHides[i],
-         chosenEntity[i]});
+        {std::move(*s), chosen[i].first, chosen[i].second, chosenSky[i], chosenHides[i]});
     st.skyBrushes += chosenSky[i] ? 1 : 0;
+    Solid& added = solids.back();
+    for (const int side : added.solid.faceSide)
+      added.skipSide = added.skipSide || lower(added.brush->sides[side].texture) == "skip";
   }
   st.solidBrushes = solids.size();
   // Stable sort keeps file order among equal keys; the tie rule compares sorted positions, which

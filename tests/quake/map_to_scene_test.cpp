@@ -371,31 +371,60 @@ TEST(MapToScene, SkipFacesAreNotDrawnButStillHide) {
   EXPECT_NEAR(area(s), 5 * 64.0 * 64 + (2 * 192.0 * 192 - 64.0 * 64) + 4 * 192.0 * 16, 1e-6);
 }
 
-TEST(MapToScene, DetailWallHidesOnlyItsOwnEntitysBuriedFacesAndNeverCutsThem) {
-  // One func_detail_wall of three stacked boxes on a world floor. The faces between its two big
-  // boxes lie inside the entity's solid: dropped (on e3m4 such a face, flush with a third box's
-  // side, let `verify`'s rays out across that side within the contact distance). The small box
-  // covers part of the upper box's top, which stays whole, not cut; its own bottom, covered
-  // whole, goes. The world floor keeps its whole top (func_detail_wall clips no other entity's
-  // faces), while the floor, a world brush, hides the lower box's bottom as usual.
+TEST(MapToScene, ClosedDetailWallDropsTheFacesItHidesWholeAndCutsNone) {
+  // One func_detail_wall of three stacked boxes on a world floor, under a world box. The faces
+  // between its two big boxes, and the world box's bottom on its small box, are covered whole:
+  // dropped (on e3m4 such faces, flush with another brush's side, let `verify`'s rays out across
+  // that side within the contact distance). Covered in part, the upper box's top under the small
+  // box and the floor's top under the stack stay whole (func_detail_wall clips nothing), while
+  // the world's brushes hide the lower box's bottom and the small box's top as usual.
   const std::string detail = "{\n\"classname\" \"func_detail_wall\"\n" +
                              boxBrush({0, 0, 0}, {64, 64, 64}) +
                              boxBrush({0, 0, 64}, {64, 64, 128}) +
                              boxBrush({0, 0, 128}, {32, 32, 160}) + "}\n";
   MapImportStats st;
-  const Scene s = convert(world(boxBrush({-64, -64, -16}, {128, 128, 0})) + detail, &st);
+  const Scene s = convert(
+      world(boxBrush({-64, -64, -16}, {128, 128, 0}) + boxBrush({0, 0, 160}, {32, 32, 192})) +
+          detail,
+      &st);
   EXPECT_FALSE(anyPatchOnPlane(s, 2, 64));
+  EXPECT_FALSE(anyPatchOnPlane(s, 2, 160));
   std::vector<double> onTop, onFloor;
   for (const Patch& p : s.patches) {
     const Vec3 c = p.polygon.centroid();
     if (std::abs(c.z - 128) < 1e-9) onTop.push_back(p.polygon.area() * p.polygon.normal().z);
     if (std::abs(c.z) < 1e-9) onFloor.push_back(p.polygon.area() * p.polygon.normal().z);
   }
-  EXPECT_EQ(onTop, std::vector<double>{64.0 * 64});    // the upper box's top, whole, facing up
+  EXPECT_EQ(onTop, std::vector<double>{64.0 * 64});      // the upper box's top, whole, facing up
   EXPECT_EQ(onFloor, std::vector<double>{192.0 * 192});  // the floor's top, whole
-  EXPECT_EQ(st.hiddenFaces, 4u);
-  // The floor brush whole; the big boxes' sides and the upper top; the small box but its bottom.
-  EXPECT_NEAR(area(s), (2 * 192.0 * 192 + 4 * 192.0 * 16) + 9 * 64.0 * 64 + 5 * 32.0 * 32, 1e-6);
+  EXPECT_EQ(st.hiddenFaces, 6u);
+  // The floor brush whole; the big boxes' sides and the upper top; the small box's sides; the
+  // world box but its bottom.
+  EXPECT_NEAR(area(s),
+              (2 * 192.0 * 192 + 4 * 192.0 * 16) + 9 * 64.0 * 64 + 4 * 32.0 * 32 + 5 * 32.0 * 32,
+              1e-6);
+}
+
+TEST(MapToScene, DetailWallBrushWithASkipSideHidesNothing) {
+  // Two stacked func_detail_wall boxes, the upper with a skip side: the upper box is open, so
+  // the lower one's top stays (seen through the opening); the lower, closed, still hides the
+  // upper one's bottom.
+  std::string open;
+  for (int k = 0; k < 3; ++k) {
+    open += test::boxSide(k, -1, k == 2 ? 64 : 0, "wall");
+    open += test::boxSide(k, +1, k == 2 ? 128 : 64, k == 0 ? "skip" : "wall");
+  }
+  const std::string detail = "{\n\"classname\" \"func_detail_wall\"\n" +
+                             boxBrush({0, 0, 0}, {64, 64, 64}) + "{\n" + open + "}\n}\n";
+  MapImportStats st;
+  const Scene s = convert(world("") + detail, &st);
+  std::vector<double> at64;
+  for (const Patch& p : s.patches)
+    if (std::abs(p.polygon.centroid().z - 64) < 1e-9)
+      at64.push_back(p.polygon.area() * p.polygon.normal().z);
+  EXPECT_EQ(at64, std::vector<double>{64.0 * 64});  // the lower top, facing up
+  EXPECT_EQ(st.skipFaces, 1u);
+  EXPECT_EQ(st.hiddenFaces, 1u);
 }
 
 TEST(MapToScene, LightEntityBecomesAnEmittingCube) {
