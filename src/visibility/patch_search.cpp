@@ -24,6 +24,9 @@ struct CellPatch {
   bool facesIn = false;   ///< the front looks into the cell
   bool interior = false;  ///< lies inside the cell: sightlines may meet either side
   bool whole = false;     ///< the piece is the whole patch
+  /// The BSP placed the patch facing one way and the cell's centroid says the other: a patch
+  /// moved onto a plane tilted from its own (see placePatches).
+  bool tilted = false;
   /// The cell's boundary plane the piece lies on (every vertex within the BSP's plane-merging
   /// slack of it), or -1. Two pieces on one boundary plane see each other only along lines
   /// within that slack of the plane, where a third piece merged onto it may stand.
@@ -204,7 +207,7 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
         const bool placedFacing = std::binary_search(facing.begin(), facing.end(), p);
         const bool centroidFacing = poly.plane.distance(inside) > 0;
         cp.facesIn = placedFacing || centroidFacing;
-        if (placedFacing != centroidFacing) cp.interior = true;
+        if (placedFacing != centroidFacing) cp.interior = cp.tilted = true;
         cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
         cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
         cp.piece = std::move(*piece);
@@ -284,8 +287,18 @@ class PatchSearch {
     result.overBudget = overBudget_;
     for (uint32_t c : markedCells_) fullyMarked_.erase(c);
     markedCells_.clear();
+    // From a patch moved onto a tilted plane, "seen" stands for "seen front to front" too: the
+    // cells around its own plane do not tell its front from its back well enough for the front
+    // flag to be trusted, and the blocker stage keeps only pairs seen front to front from both
+    // ends (lq_e4m4: a ramp face's search saw 22 patches only from behind that rays from its
+    // front reach; each of those saw it front to front). The other end's search and the
+    // blocker test still decide the pair.
+    const bool tilted = std::any_of(placements_[s].begin(), placements_[s].end(), [&](auto pk) {
+      return cellPatches_[pk.first][pk.second].tilted;
+    });
     for (uint32_t t : touched_) {
-      result.seen.push_back(seenEntry(t, flags_[t]));
+      const uint8_t f = flags_[t];
+      result.seen.push_back(seenEntry(t, tilted && (f & kSeen) ? f | kSeenFront : f));
       flags_[t] = 0;
     }
     touched_.clear();
