@@ -15,8 +15,9 @@
 //   is kept (that of the brush first in a fixed order: by least x, then file order).
 //   func_detail_wall brushes clip nothing (ericw-tools: they do not clip the world), so the
 //   faces behind their skip sides stay; one without a skip side is closed, and the faces it
-//   hides whole (inside it, or flat against it face to face) are dropped, none cut. Coplanarity is decided within the model tolerance
-//   (Tolerance::planeOffset), the one the BSP uses to merge planes.
+//   hides whole (inside it, or flat against it face to face) are dropped, none cut.
+//   Coplanarity is decided within the model tolerance (Tolerance::planeOffset), the one the BSP
+//   uses to merge planes.
 // - Materials: one per texture name; Kd from a hash of the lower-cased name (see textureColour).
 // - Lights: light and light_* entities → an outward cube of lightCubeSize at "origin", emitted
 //   power kQuakeLightPowerPerValue × "light" (default 300), coloured by "_color"; the cube's parts

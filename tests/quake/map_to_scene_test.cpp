@@ -378,10 +378,9 @@ TEST(MapToScene, ClosedDetailWallDropsTheFacesItHidesWholeAndCutsNone) {
   // that side within the contact distance). Covered in part, the upper box's top under the small
   // box and the floor's top under the stack stay whole (func_detail_wall clips nothing), while
   // the world's brushes hide the lower box's bottom and the small box's top as usual.
-  const std::string detail = "{\n\"classname\" \"func_detail_wall\"\n" +
-                             boxBrush({0, 0, 0}, {64, 64, 64}) +
-                             boxBrush({0, 0, 64}, {64, 64, 128}) +
-                             boxBrush({0, 0, 128}, {32, 32, 160}) + "}\n";
+  const std::string detail =
+      "{\n\"classname\" \"func_detail_wall\"\n" + boxBrush({0, 0, 0}, {64, 64, 64}) +
+      boxBrush({0, 0, 64}, {64, 64, 128}) + boxBrush({0, 0, 128}, {32, 32, 160}) + "}\n";
   MapImportStats st;
   const Scene s = convert(
       world(boxBrush({-64, -64, -16}, {128, 128, 0}) + boxBrush({0, 0, 160}, {32, 32, 192})) +
