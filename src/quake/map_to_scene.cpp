@@ -190,8 +190,8 @@ std::vector<ConvexPolygon> visibleOf(const ConvexPolygon& face, size_t self,
     // face, gets no light and is dropped (e3m4: such faces, flush with a brush side, let
     // `verify`'s rays leave them across that side within the contact distance: 4 pairs missed
     // in 10^6 rays). Faces it hides in part stay whole, not cut (cutting them, as the world's
-    // brushes do, made e3m4 16 % more patches), and where two faces share a surface facing one
-    // way both stay (that tie could drop a drawn face for a skip side).
+    // brushes do, made e3m4 23,451 patches instead of 16,705), and where two faces share a
+    // surface facing one way both stay (that tie could drop a drawn face for a skip side).
     if (j == self || (!solids[j].hidesOthers && solids[j].skipSide)) continue;
     const Aabb& ob = solids[j].solid.box;
     if (ob.lo.x > fb.hi.x + on) break;
