@@ -85,6 +85,15 @@ std::optional<BrushSolid> brushSolid(const MapBrush& brush, const Tolerance& tol
 std::vector<ConvexPolygon> visibleParts(const ConvexPolygon& face, const ConvexPolyhedron& other,
                                         const CoplanarRule& rule, const Tolerance& tol) {
   const double on = rule.onTolerance;
+  if (rule.flatAgainstOnly) {
+    const bool flatAgainst =
+        std::any_of(other.halfspaces.begin(), other.halfspaces.end(), [&](const Plane& h) {
+          if (dot(face.plane.normal, h.normal) >= 0) return false;
+          return std::all_of(face.vertices.begin(), face.vertices.end(),
+                             [&](const Vec3& v) { return std::abs(h.distance(v)) <= on; });
+        });
+    if (!flatAgainst) return {face};
+  }
   std::vector<ConvexPolygon> outside;
   ConvexPolygon remaining = face;  // the part still possibly inside `other`
   for (const Plane& h : other.halfspaces) {

@@ -52,9 +52,12 @@ std::optional<BrushSolid> brushSolid(const MapBrush& brush, const Tolerance& tol
 /// Opposite facing (two solids touching face to face) is always hidden: that part is between two
 /// solids. Same facing (two solids with a common surface) is hidden only when `otherWinsTies`,
 /// so that of two coincident faces exactly one survives.
+/// With `flatAgainstOnly`, only the part flat against an opposite-facing face of `other` is hidden:
+/// a face not lying in one of `other`'s planes is kept whole even where it passes through `other`.
 struct CoplanarRule {
   bool otherWinsTies = false;
   double onTolerance = 0;
+  bool flatAgainstOnly = false;
 };
 
 /// The parts of `face` not hidden by the convex solid `other`: the pieces outside it, plus the

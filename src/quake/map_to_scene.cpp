@@ -14,8 +14,9 @@
 //   of one (two solids touching), are removed; of two coincident same-facing faces exactly one
 //   is kept (that of the brush first in a fixed order: by least x, then file order).
 //   func_detail_wall brushes clip nothing (ericw-tools: they do not clip the world), so the
-//   faces behind their skip sides stay; one without a skip side is closed, and the faces it
-//   hides whole (inside it, or flat against it face to face) are dropped, none cut.
+//   faces behind their skip sides stay; one without a skip side is closed: the faces it hides
+//   whole (inside it, or flat against it face to face) are dropped, and a face flat against it
+//   in part loses that part; a face passing through it stays whole.
 //   Coplanarity is decided within the model tolerance (Tolerance::planeOffset), the one the BSP
 //   uses to merge planes.
 // - Materials: one per texture name; Kd from a hash of the lower-cased name (see textureColour).
@@ -173,7 +174,8 @@ struct Solid {
   bool sky = false;
   /// False for func_detail_wall, which by ericw-tools' definition does not clip the faces of
   /// other brushes (those stay drawn behind it; it often has skip faces that rely on them).
-  /// Without a skip side it still drops the faces it hides whole (see visibleOf).
+  /// Without a skip side it still drops the faces it hides whole and cuts those flat against it
+  /// in part (see visibleOf).
   bool hidesOthers = true;
   bool skipSide = false;  ///< some face of the solid is textured skip (not drawn: it is open)
 };
@@ -189,9 +191,11 @@ std::vector<ConvexPolygon> visibleOf(const ConvexPolygon& face, size_t self,
     // no skip side is closed: a face it hides whole, inside it or flat against it face to
     // face, gets no light and is dropped (e3m4: such faces, flush with a brush side, let
     // `verify`'s rays leave them across that side within the contact distance: 4 pairs missed
-    // in 10^6 rays). Faces it hides in part stay whole, not cut (cutting them, as the world's
-    // brushes do, made e3m4 23,451 patches instead of 16,705), and where two faces share a
-    // surface facing one way both stay (that tie could drop a drawn face for a skip side).
+    // in 10^6 rays). A face flat against it in part loses that part, for the same reason (e3m4:
+    // a beam's bottom partly resting on such brushes, 1 pair missed). Faces passing through it
+    // stay whole (cutting them too, as the world's brushes do, made e3m4 23,451 patches; this
+    // rule makes 17,922, from 16,705), and where two faces share a surface facing one way both
+    // stay (that tie could drop a drawn face for a skip side).
     if (j == self || (!solids[j].hidesOthers && solids[j].skipSide)) continue;
     const Aabb& ob = solids[j].solid.box;
     if (ob.lo.x > fb.hi.x + on) break;
@@ -203,7 +207,10 @@ std::vector<ConvexPolygon> visibleOf(const ConvexPolygon& face, size_t self,
     for (ConvexPolygon& p : parts) {
       std::vector<ConvexPolygon> v = visibleParts(p, solids[j].solid.shape, rule, tol);
       if (!solids[j].hidesOthers) {
-        if (!v.empty()) next.push_back(std::move(p));  // hidden whole or kept whole
+        if (v.empty()) continue;  // hidden whole
+        const CoplanarRule flat{false, on, /*flatAgainstOnly=*/true};
+        for (ConvexPolygon& q : visibleParts(p, solids[j].solid.shape, flat, tol))
+          next.push_back(std::move(q));
         continue;
       }
       for (ConvexPolygon& q : v) next.push_back(std::move(q));

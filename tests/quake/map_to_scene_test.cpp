@@ -371,36 +371,48 @@ TEST(MapToScene, SkipFacesAreNotDrawnButStillHide) {
   EXPECT_NEAR(area(s), 5 * 64.0 * 64 + (2 * 192.0 * 192 - 64.0 * 64) + 4 * 192.0 * 16, 1e-6);
 }
 
-TEST(MapToScene, ClosedDetailWallDropsTheFacesItHidesWholeAndCutsNone) {
-  // One func_detail_wall of three stacked boxes on a world floor, under a world box. The faces
-  // between its two big boxes, and the world box's bottom on its small box, are covered whole:
-  // dropped (on e3m4 such faces, flush with another brush's side, let `verify`'s rays out across
-  // that side within the contact distance). Covered in part, the upper box's top under the small
-  // box and the floor's top under the stack stay whole (func_detail_wall clips nothing), while
-  // the world's brushes hide the lower box's bottom and the small box's top as usual.
+TEST(MapToScene, ClosedDetailWallCutsOnlyWhereAFaceLiesFlatAgainstIt) {
+  // One func_detail_wall of three stacked boxes on a world floor, under a world box, with a world
+  // box poking into its lower box from the side. Faces covered whole are dropped: those between
+  // its two big boxes, the world box's bottom on its small box, the poking box's end inside it
+  // (on e3m4 such faces, flush with another brush's side, let `verify`'s rays out across that side
+  // within the contact distance). Faces flat against it in part lose that part: the upper box's
+  // top under the small box and the floor's top under the stack (e3m4: the buried part of a beam's
+  // bottom did the same). A face passing through it stays whole (func_detail_wall clips nothing):
+  // the poking box's sides. The world's brushes hide and cut as usual: the lower box's bottom and
+  // the small box's top go, the lower box's side loses the poking box's section.
   const std::string detail =
       "{\n\"classname\" \"func_detail_wall\"\n" + boxBrush({0, 0, 0}, {64, 64, 64}) +
       boxBrush({0, 0, 64}, {64, 64, 128}) + boxBrush({0, 0, 128}, {32, 32, 160}) + "}\n";
   MapImportStats st;
-  const Scene s = convert(
-      world(boxBrush({-64, -64, -16}, {128, 128, 0}) + boxBrush({0, 0, 160}, {32, 32, 192})) +
-          detail,
-      &st);
+  const Scene s =
+      convert(world(boxBrush({-64, -64, -16}, {128, 128, 0}) +
+                    boxBrush({0, 0, 160}, {32, 32, 192}) + boxBrush({48, 16, 16}, {96, 48, 48})) +
+                  detail,
+              &st);
   EXPECT_FALSE(anyPatchOnPlane(s, 2, 64));
   EXPECT_FALSE(anyPatchOnPlane(s, 2, 160));
-  std::vector<double> onTop, onFloor;
+  double onTop = 0, onFloor = 0, pokeSides = 0;
   for (const Patch& p : s.patches) {
     const Vec3 c = p.polygon.centroid();
-    if (std::abs(c.z - 128) < 1e-9) onTop.push_back(p.polygon.area() * p.polygon.normal().z);
-    if (std::abs(c.z) < 1e-9) onFloor.push_back(p.polygon.area() * p.polygon.normal().z);
+    const double a = p.polygon.area();
+    if (std::abs(c.z - 128) < 1e-9) onTop += a * p.polygon.normal().z;
+    if (std::abs(c.z) < 1e-9) onFloor += a * p.polygon.normal().z;
+    if (c.z > 0 && c.z < 64 && c.x > 64 && c.x < 96 && std::abs(p.polygon.normal().x) < 1e-9)
+      pokeSides += a;
   }
-  EXPECT_EQ(onTop, std::vector<double>{64.0 * 64});      // the upper box's top, whole, facing up
-  EXPECT_EQ(onFloor, std::vector<double>{192.0 * 192});  // the floor's top, whole
-  EXPECT_EQ(st.hiddenFaces, 6u);
-  // The floor brush whole; the big boxes' sides and the upper top; the small box's sides; the
-  // world box but its bottom.
+  EXPECT_NEAR(onTop, 64.0 * 64 - 32.0 * 32, 1e-6);      // the upper box's top, facing up, cut
+  EXPECT_NEAR(onFloor, 192.0 * 192 - 64.0 * 64, 1e-6);  // the floor's top, cut
+  // Each of the poking box's four sides is whole (48 × 32; centroid at x = 72), not cut at x = 64.
+  EXPECT_NEAR(pokeSides, 4 * 48.0 * 32, 1e-6);
+  EXPECT_EQ(st.hiddenFaces, 7u);
+  EXPECT_EQ(st.cutFaces, 3u);  // the upper top, the floor's top, the lower box's side
+  // The floor brush but the stack's footprint; the big boxes' sides (one with a hole) and the upper
+  // top but the small box's footprint; the small box's sides; the world box but its bottom; the
+  // poking box but its end.
   EXPECT_NEAR(area(s),
-              (2 * 192.0 * 192 + 4 * 192.0 * 16) + 9 * 64.0 * 64 + 4 * 32.0 * 32 + 5 * 32.0 * 32,
+              (2 * 192.0 * 192 + 4 * 192.0 * 16 - 64.0 * 64) + (9 * 64.0 * 64 - 2 * 32.0 * 32) +
+                  4 * 32.0 * 32 + 5 * 32.0 * 32 + (4 * 48.0 * 32 + 32.0 * 32),
               1e-6);
 }
 
