@@ -75,15 +75,15 @@ struct PatchPlacement {
   size_t thinWallSlivers = 0;  ///< pieces placed by placeThinWallSlivers
 };
 
-/// Whether some point of `a` lies within `slack` of `w` (tested against the slab of w's plane and
-/// the prism over w's edges, each widened by slack: a little more than the true distance near w's
-/// corners, which only keeps more).
-bool withinSlack(const ConvexPolygon& a, const ConvexPolygon& w, double slack,
-                 const Tolerance& tol) {
+/// The part of `a` within `slack` of `w` (clipped to the slab of w's plane and the prism over w's
+/// edges, each widened by slack: a little more than the true distance near w's corners, which
+/// only keeps more), or nullopt when no point of `a` is that close.
+std::optional<ConvexPolygon> nearPart(const ConvexPolygon& a, const ConvexPolygon& w, double slack,
+                                      const Tolerance& tol) {
   const Aabb ab = a.bounds(), wb = w.bounds();
   if (ab.lo.x > wb.hi.x + slack || wb.lo.x > ab.hi.x + slack || ab.lo.y > wb.hi.y + slack ||
       wb.lo.y > ab.hi.y + slack || ab.lo.z > wb.hi.z + slack || wb.lo.z > ab.hi.z + slack)
-    return false;
+    return std::nullopt;
   std::optional<ConvexPolygon> cur = a;
   const Plane& wp = w.plane;
   cur = clipToFront(*cur, Plane{-wp.normal, -wp.offset - slack}, tol);
@@ -96,7 +96,20 @@ bool withinSlack(const ConvexPolygon& a, const ConvexPolygon& w, double slack,
     // keep out·x <= out·a0 + slack
     cur = clipToFront(*cur, Plane{-out, -dot(out, a0) - slack}, tol);
   }
-  return cur.has_value();
+  return cur;
+}
+
+/// The part of `a` inside the box `b` (a convex polygon: `a` clipped by six planes), or nullopt.
+std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
+                                       const Tolerance& tol) {
+  std::optional<ConvexPolygon> cur = a;
+  for (int axis = 0; axis < 3 && cur; ++axis) {
+    Vec3 n{0, 0, 0};
+    n[axis] = 1;
+    cur = clipToFront(*cur, Plane{n, b.lo[axis]}, tol);
+    if (cur) cur = clipToFront(*cur, Plane{-n, -b.hi[axis]}, tol);
+  }
+  return cur;
 }
 
 /// Slivers across thin walls. A patch S ending against a one-sided wall W (a face with air
@@ -108,12 +121,18 @@ bool withinSlack(const ConvexPolygon& a, const ConvexPolygon& w, double slack,
 /// - B is a convex cell with no patch inside it (its air is all behind W) and a patch faces into
 ///   it from a boundary plane that no patch facing away shares (it is air, not a solid's inside
 ///   seen by hidden faces),
-/// - W faces away from B, S reaches W's front side, and the part of W strictly in front of S
-///   comes within the slack of that piece (a ray leaving S's front can cross it), and
+/// - either W faces away from B, S reaches W's front side, and the part of W strictly in front of
+///   S comes within the slack of that piece (a ray leaving S's front can cross it),
+/// - or W faces into B with S behind it (a solid's far side, or the back of a one-sided wall),
+///   the part of W strictly in front of S comes within the slack of the piece (a ray leaving S
+///   crosses W from behind: on e3m4 a wedge of air between S and a brush's corner, the ray
+///   cutting the corner, 1 ray in 10^6), and no portal of B into a cell S is placed in passes
+///   within the slack of those parts (there rays a slack beside it reach B through the opening
+///   and are searched from S's own piece: a ledge, a step; only a pocket of air shut by the
+///   solid's corner needs the sliver). Only those parts (their box) become the piece, and
 /// - part of B lies in front of S.
-/// Not covered (measured, docs/BENCHMARKS.md): S behind a wall that faces into B (a face hidden
-/// under a brush that ends flush with the brush's far side), and cells with patches inside them
-/// or merged from several leaves, where the air behind W is not known without a finer test.
+/// Not covered (measured, docs/BENCHMARKS.md): cells with patches inside them or merged from
+/// several leaves, where the air behind W is not known without a finer test.
 /// Returns the number of pieces placed.
 size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
                             PatchPlacement& out) {
@@ -122,15 +141,21 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
   for (const Patch& p : scene.patches) boxes.push_back(p.polygon.bounds());
   const PatchGrid grid(boxes);
   const double slack = tol.planeOffset();
-  // Whether a ray leaving S's front near `piece` can cross the one-sided wall `w` into the cell.
-  auto crossesInto = [&](const ConvexPolygon& s, const ConvexPolygon& piece, const CellPatch& w) {
+  // The part of `piece` from which a ray leaving S's front can cross the wall `w` of the cell
+  // within the slack of its start, or nullopt: S must reach the side of W's plane away from the
+  // cell (in front of W when W faces away from the cell, behind it when W faces into it), and the
+  // part of W strictly in front of S must come within the slack of the piece.
+  auto nearWallPart = [&](const ConvexPolygon& s, const ConvexPolygon& piece,
+                          const CellPatch& w) -> std::optional<ConvexPolygon> {
     const Plane& wp = scene.patches[w.patch].polygon.plane;
+    const double away = w.facesIn ? -1 : 1;  // the sign of W's side away from the cell
     if (std::none_of(s.vertices.begin(), s.vertices.end(),
-                     [&](const Vec3& v) { return wp.distance(v) > tol.length(); }))
-      return false;  // S stays behind W or on its plane: it would not cross W from the front
+                     [&](const Vec3& v) { return away * wp.distance(v) > tol.length(); }))
+      return std::nullopt;  // S stays on the cell's side of W or on its plane: it cannot cross W
     const auto ahead =
         clipToFront(w.piece, Plane{s.plane.normal, s.plane.offset + tol.length()}, tol);
-    return ahead && withinSlack(piece, *ahead, slack, tol);
+    if (!ahead) return std::nullopt;
+    return nearPart(piece, *ahead, slack, tol);
   };
   std::vector<uint32_t> near;
   size_t placed = 0;
@@ -141,6 +166,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
     std::vector<size_t> walls;  // the BSP-listed pieces of B that face away from it
     for (size_t k = 0; k < listed.size(); ++k)
       if (!listed[k].facesIn) walls.push_back(k);
+    const size_t listedHere = listed.size();  // slivers placed below are not walls
     // B is air when a patch faces into it from a boundary plane that no patch facing away shares
     // (a face covered by a coincident one facing away is a solid's hidden face: a floor under a
     // wall box). In a solid's inside a ray that crossed W would see only backs of faces.
@@ -150,7 +176,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
                 return listed[k].boundaryPlane == in.boundaryPlane;
               }));
     });
-    if (walls.empty() || !air) continue;
+    if (!air) continue;
     near.clear();
     grid.gather(cell.shape.bounds(), 2 * slack, near);
     std::sort(near.begin(), near.end());
@@ -161,10 +187,37 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
       if (side != PlaneSide::Front && side != PlaneSide::Spanning) continue;
       auto piece = clipToCell(poly, cell.shape, tol);
       if (!piece) continue;
-      if (std::none_of(walls.begin(), walls.end(), [&](size_t k) {
-            return crossesInto(poly, *piece, listed[k]);  // p is none of B's listed patches
-          }))
-        continue;
+      const bool crosses = std::any_of(walls.begin(), walls.end(), [&](size_t k) {
+        return nearWallPart(poly, *piece, listed[k]).has_value();  // p is not listed in B
+      });
+      if (!crosses) {
+        // Only the box of the parts near such walls: a ray from elsewhere on the piece would
+        // cross them further than the slack from its start.
+        Aabb box;
+        for (size_t k = 0; k < listedHere; ++k)
+          if (listed[k].facesIn)
+            if (const std::optional<ConvexPolygon> part = nearWallPart(poly, *piece, listed[k]))
+              box.add(part->bounds());
+        if (box.empty()) continue;
+        // Where an opening of the cell into a cell S is placed in passes near those parts, rays
+        // a slack beside the ones cutting through the wall reach the cell through that opening
+        // and are searched from S there (a wall S ends at from behind: a ledge, a step); only
+        // where no such opening passes by, as in a wedge of air shut by a solid's corner, is the
+        // sliver needed. (Without this test q3-oa_dm2 listed 11 % more pairs, q3-dm4ish 7 %.)
+        const bool openingNearby =
+            std::any_of(cell.portals.begin(), cell.portals.end(), [&](uint32_t q) {
+              const Portal& portal = sub.portals[q];
+              const uint32_t o = portal.other(c);
+              return portal.polygon.bounds().meets(box, slack) &&
+                     std::any_of(out.placements[p].begin(), out.placements[p].end(),
+                                 [&](const auto& pl) { return pl.first == o; });
+            });
+        if (openingNearby) continue;
+        const double grow = tol.length();
+        piece = clipToBox(*piece,
+                          {box.lo - Vec3{grow, grow, grow}, box.hi + Vec3{grow, grow, grow}}, tol);
+        if (!piece) continue;
+      }
       CellPatch cp;
       cp.patch = p;
       cp.facesIn = true;
