@@ -34,6 +34,12 @@ Action addVerifyCommand(CLI::App& app) {
                   "Listed pairs sampled for the tightness figure (48 segments each)")
       ->capture_default_str()
       ->check(CLI::Range(uint64_t{0}, uint64_t{100'000'000}));
+  cmd->add_option("--contact", s->options.rayContact,
+                  "Hits of the rays from patches closer than this fraction of the scene's "
+                  "diagonal to their start are contact, not sight (1e-5 is the model "
+                  "tolerance)")
+      ->capture_default_str()
+      ->check(CLI::Range(kVerifyContactDistance, 1e-3));
   cmd->add_flag("--json", s->json, "Print the report as JSON on stdout");
   return [s] {
     const std::filesystem::path dir(s->dir);

@@ -159,6 +159,8 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
   const double eps = 1e-9 * scene.bounds().diagonal();
   // Embree intersects in single precision: hits closer than this to a ray's origin are contact.
   const double offset = kVerifyContactDistance * scene.bounds().diagonal();
+  const double rayContact =
+      std::max(options.rayContact, kVerifyContactDistance) * scene.bounds().diagonal();
   // The model tolerance (geometry/tolerance.h), restated here: faces closer than this are one.
   const double contactTolerance = kRelativeModelEpsilon * scene.bounds().diagonal();
 
@@ -170,8 +172,8 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
     ++report.rays;
     // Start just in front of S: a patch overlapping S in its own plane (a box resting on a floor)
     // meets the ray at distance 0, which is contact, not sight.
-    const auto hit =
-        confirmedFirstHit(rays, scene, o + sp.normal() * offset, d, INFINITY, s, s, offset, eps);
+    const auto hit = confirmedFirstHit(rays, scene, o + sp.normal() * offset, d, INFINITY, s, s,
+                                       rayContact, eps);
     if (!hit || dot(d, scene.patches[hit->patch].polygon.normal()) >= 0) continue;
     ++report.raysHittingFront;
     if (inContact(sp, scene.patches[hit->patch].polygon, contactTolerance)) {

@@ -26,6 +26,10 @@ struct VerifyOptions {
   /// Listed pairs sampled for the tightness figure (VerifyReport::excess): each gets
   /// kTightnessSegments segments; a pair none of which is free counts as excess.
   uint64_t tightnessPairs = 2000;
+  /// Hits of the rays from patches closer than this fraction of the scene's diagonal to their
+  /// start are contact, not sight (skipped). At least kVerifyContactDistance; up to the model
+  /// tolerance (kRelativeModelEpsilon), the strictest reading of the contract's contact rule.
+  double rayContact = kVerifyContactDistance;
 };
 
 /// Segments per sampled pair in the tightness figure (../shared/DESIGN.md: "none of 48").

@@ -119,6 +119,31 @@ TEST(VerifyChecks, HitsOfTheOffsetSegmentThatTheSegmentItselfMissesAreNotViolati
   EXPECT_FALSE(blocked.ok());
 }
 
+TEST(VerifyChecks, TheRaysContactDistanceDecidesWhetherAThinWallRightOverAPatchIsSeenThrough) {
+  // S (z = 0, facing up), a one-sided sheet W 2e-5 above it facing away from S, and R (z = 1,
+  // facing down) over both; nothing listed. The diagonal is about 7.1, so W lies between the
+  // default contact distance (1e-6 of it, 7e-6) and the model tolerance (1e-5, 7e-5): by default
+  // every ray from S meets W's back (no pair named); with --contact 1e-5 most rays' hits of W
+  // are contact, and they name (S, R), which is not listed.
+  GreyScene g(8);
+  auto add = [&](const std::vector<Vec3>& v) { g.add(v); };
+  add({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});                  // S, facing up
+  add({{-2, -2, 2e-5}, {3, -2, 2e-5}, {3, 3, 2e-5}, {-2, 3, 2e-5}});  // W, facing up
+  add({{-2, -2, 1}, {-2, 3, 1}, {3, 3, 1}, {3, -2, 1}});              // R, facing down
+  VisibilityGraph graph;
+  graph.interactions = {{1, 2, {}}};  // W's front sees R
+  VerifyOptions o;
+  o.rays = 20000;
+  o.segments = 0;
+  o.tightnessPairs = 0;
+  const VerifyReport strict = verifyVisibility(g.scene, graph, o);
+  EXPECT_EQ(strict.missingPairs, 0u) << (strict.examples.empty() ? "" : strict.examples[0]);
+  o.rayContact = 1e-5;
+  const VerifyReport loose = verifyVisibility(g.scene, graph, o);
+  // S has 1/51 of the area: about 390 of the rays leave S, most of them within 63° of its normal.
+  EXPECT_GT(loose.missingPairs, 100u);
+}
+
 TEST(VerifyChecks, AListedBlockerMetWithinTheContactDistanceIsTheFirstHit) {
   // S (z = 0, facing up) and R (z = 1, facing down) face each other. B1 lies 5e-7 above the
   // near half of S (a solid's face resting on S, a little out of line), under verify's contact
