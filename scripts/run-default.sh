@@ -31,7 +31,11 @@ step "cells and portals (paper §3, §7.1)"
 "$gv" cells "$out/office.obj" -o "$out/cells" --min-coverage 0.3
 
 step "visibility and blocker lists (paper §4-§5, §7.2-7.3)"
-"$gv" vis "$out/office.obj" -o "$out/vis"
+# On the patches the radiosity step uses (cut along the outlines of the solids resting on them,
+# scene/contact_split.h), so the viewer's links and the report's §7 figures are the radiosity's.
+# A whole floor's or wall's shaft holds every piece of furniture in the room: on the whole
+# patches 33 blockers per PARTIAL pair, on the cut ones 9.4 (docs/BENCHMARKS.md).
+"$gv" vis "$out/office.obj" -o "$out/vis" --contact-split
 
 step "independent check of the visibility by ray casting"
 "$gv" verify "$out/vis" --rays 100000 --segments 20000 | tee "$out/vis/verify.txt"
