@@ -141,6 +141,9 @@ Action addVisCommand(CLI::App& app) {
     if (v.thinWallSlivers > 0)
       fmt::print("pieces of patches searched across one-sided walls they end against: {}\n",
                  v.thinWallSlivers);
+    if (v.acrossPortalPieces > 0)
+      fmt::print("pieces of patches searched across openings lying along them: {}\n",
+                 v.acrossPortalPieces);
     if (v.pairsHiddenByOne > 0)
       fmt::print("pairs dropped as hidden whole behind one of their blockers: {}\n",
                  v.pairsHiddenByOne);

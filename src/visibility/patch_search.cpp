@@ -73,6 +73,7 @@ struct PatchPlacement {
   std::vector<std::vector<CellPatch>> cellPatches;
   Placements placements;
   size_t thinWallSlivers = 0;  ///< pieces placed by placeThinWallSlivers
+  size_t acrossPortals = 0;    ///< pieces placed by placeAcrossCoplanarPortals
 };
 
 /// The part of `a` within `slack` of `w` (clipped to the slab of w's plane and the prism over w's
@@ -232,6 +233,95 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
   return placed;
 }
 
+/// Whether `a` comes within `slack` of the plane of `w` somewhere more than `slack` inside w's
+/// edges: an overlap, not a neighbour in the plane sharing an edge.
+bool overlapsInside(const ConvexPolygon& a, const ConvexPolygon& w, double slack,
+                    const Tolerance& tol) {
+  std::optional<ConvexPolygon> cur = a;
+  const Plane& wp = w.plane;
+  cur = clipToFront(*cur, Plane{-wp.normal, -wp.offset - slack}, tol);
+  if (cur) cur = clipToFront(*cur, Plane{wp.normal, wp.offset - slack}, tol);
+  const size_t n = w.vertices.size();
+  for (size_t i = 0; cur && i < n; ++i) {
+    const Vec3& a0 = w.vertices[i];
+    const Vec3 out = normalize(cross(w.vertices[(i + 1) % n] - a0, wp.normal));
+    cur = clipToFront(*cur, Plane{-out, -dot(out, a0) + slack}, tol);  // out·x <= out·a0 - slack
+  }
+  return cur && cur->area() > 0;
+}
+
+/// Pieces of patches across the openings that overlap them. The BSP may move a patch onto a
+/// plane tilted from its own within the model tolerance and leave, between that plane and the
+/// patch's own, a wedge of a cell a hair thick whose boundary on the patch's own plane is an
+/// opening: the patch is placed in the wedge only, and its front looks out of the wedge through
+/// that opening, which lies on the patch. A sightline leaving the front there crosses the opening
+/// in its plane, where no stabbing line goes, so the search from the wedge never reaches the air
+/// in front (lq_e4m4: a ramp face in a wedge 0.12 thick at its widest end, its two misses in
+/// 10^6 `verify` rays). So a patch with a piece in a cell whose portal lies along the patch's
+/// plane and overlaps it is also placed in the cell across that portal, facing as that cell's
+/// centroid says, and never as a whole piece (the same-cell shortcut stays with exact pieces).
+/// Extra pieces only let the searches see more: the test for "along the plane" may be generous.
+/// Returns the number of pieces placed.
+size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
+                                  PatchPlacement& out) {
+  // Normals within about 2.6 degrees: the BSP's merged planes differ by far less.
+  constexpr double kCoplanarCos = 0.999;
+  const double slack = tol.planeOffset();
+  struct Extra {
+    uint32_t cell;
+    CellPatch piece;
+  };
+  std::vector<Extra> extras;
+  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+    const Cell& cell = sub.cells[c];
+    for (const CellPatch& cp : out.cellPatches[c]) {
+      const ConvexPolygon& poly = scene.patches[cp.patch].polygon;
+      const Aabb box = cp.piece.bounds();
+      for (uint32_t q : cell.portals) {
+        const Portal& portal = sub.portals[q];
+        const uint32_t o = portal.other(c);
+        if (!portal.polygon.bounds().meets(box, slack)) continue;
+        if (std::abs(dot(portal.polygon.plane.normal, poly.plane.normal)) < kCoplanarCos) continue;
+        const auto& placed = out.placements[cp.patch];
+        if (std::any_of(placed.begin(), placed.end(),
+                        [&](const auto& pl) { return pl.first == o; }))
+          continue;
+        if (!overlapsInside(cp.piece, portal.polygon, slack, tol)) continue;
+        const Cell& other = sub.cells[o];
+        auto add = [&](const ConvexPolyhedron& shape) {
+          std::optional<ConvexPolygon> piece = clipToCell(poly, shape, tol);
+          if (!piece) return;
+          CellPatch extra;
+          extra.patch = cp.patch;
+          extra.facesIn = poly.plane.distance(shape.centroid()) > 0;
+          extra.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
+          extra.piece = std::move(*piece);
+          extras.push_back({o, std::move(extra)});
+        };
+        if (other.parts.empty()) {
+          add(other.shape);
+        } else {
+          for (const CellPart& part : other.parts) add(part.shape);
+        }
+      }
+    }
+  }
+  // Placed after the scan, so that a piece placed here does not spread further, once per cell.
+  size_t placed = 0;
+  for (Extra& e : extras) {
+    auto& where = out.placements[e.piece.patch];
+    if (std::any_of(where.begin(), where.end(), [&](const auto& pl) {
+          return pl.first == e.cell &&
+                 out.cellPatches[e.cell][pl.second].piece.vertices == e.piece.piece.vertices;
+        }))
+      continue;
+    where.emplace_back(e.cell, out.cellPatches[e.cell].size());
+    out.cellPatches[e.cell].push_back(std::move(e.piece));
+    ++placed;
+  }
+  return placed;
+}
+
 PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const Tolerance& tol) {
   PatchPlacement out;
   std::vector<std::vector<CellPatch>>& cellPatches = out.cellPatches;
@@ -275,6 +365,7 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
       for (const CellPart& part : cell.parts) place(part.shape, part.patches, {});
     }
   }
+  out.acrossPortals = placeAcrossCoplanarPortals(scene, sub, tol, out);
   out.thinWallSlivers = placeThinWallSlivers(scene, sub, tol, out);
   return out;
 }
@@ -528,6 +619,7 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
   const std::vector<std::vector<CellPatch>>& cellPatches = placed.cellPatches;
   const Placements& placements = placed.placements;
   st.thinWallSlivers = placed.thinWallSlivers;
+  st.acrossPortalPieces = placed.acrossPortals;
   const PortalReach reach = cells.reach();
   const std::vector<CellSet>& cellReach = cells.cellReach;
   std::vector<PatchSearchResult> seen(n);

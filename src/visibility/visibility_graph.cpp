@@ -143,6 +143,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"same_cell_shortcuts", s.sameCellShortcuts},
       {"pairs_hidden_by_one_blocker", s.pairsHiddenByOne},
       {"thin_wall_slivers", s.thinWallSlivers},
+      {"pieces_across_openings", s.acrossPortalPieces},
       {"cell_pairs_visible", s.cellPairsVisible},
       {"cell_searches_over_budget", s.cellSearchesOverBudget},
       {"patch_searches_over_budget", s.patchSearchesOverBudget},

@@ -72,6 +72,10 @@ struct VisibilityStats {
   /// Pieces of patches placed in a cell across a one-sided wall they end against (patch_search.cpp:
   /// rays may cross such a wall within the contact tolerance of their start).
   uint64_t thinWallSlivers = 0;
+  /// Pieces of patches placed in a cell across an opening that lies along the patch and overlaps
+  /// it (patch_search.cpp: a patch the BSP moved onto a tilted plane, its front looking out
+  /// through that opening).
+  uint64_t acrossPortalPieces = 0;
   double meanBlockersPerPartial = 0;
   double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
   uint64_t shaftSamples = 0;
