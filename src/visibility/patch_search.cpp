@@ -76,6 +76,23 @@ struct PatchPlacement {
   size_t acrossPortals = 0;    ///< pieces placed by placeAcrossCoplanarPortals
 };
 
+/// The part of `a` within `slab` of the plane of `w` and on the inner side of each of w's edges
+/// moved out by `edge` (inwards when negative): the prism over w, widened or narrowed.
+std::optional<ConvexPolygon> clipToPrism(const ConvexPolygon& a, const ConvexPolygon& w,
+                                         double slab, double edge, const Tolerance& tol) {
+  std::optional<ConvexPolygon> cur = a;
+  const Plane& wp = w.plane;
+  cur = clipToFront(*cur, Plane{-wp.normal, -wp.offset - slab}, tol);
+  if (cur) cur = clipToFront(*cur, Plane{wp.normal, wp.offset - slab}, tol);
+  const size_t n = w.vertices.size();
+  for (size_t i = 0; cur && i < n; ++i) {
+    const Vec3& a0 = w.vertices[i];
+    const Vec3 out = normalize(cross(w.vertices[(i + 1) % n] - a0, wp.normal));
+    cur = clipToFront(*cur, Plane{-out, -dot(out, a0) - edge}, tol);  // out·x <= out·a0 + edge
+  }
+  return cur;
+}
+
 /// The part of `a` within `slack` of `w` (clipped to the slab of w's plane and the prism over w's
 /// edges, each widened by slack: a little more than the true distance near w's corners, which
 /// only keeps more), or nullopt when no point of `a` is that close.
@@ -85,19 +102,7 @@ std::optional<ConvexPolygon> nearPart(const ConvexPolygon& a, const ConvexPolygo
   if (ab.lo.x > wb.hi.x + slack || wb.lo.x > ab.hi.x + slack || ab.lo.y > wb.hi.y + slack ||
       wb.lo.y > ab.hi.y + slack || ab.lo.z > wb.hi.z + slack || wb.lo.z > ab.hi.z + slack)
     return std::nullopt;
-  std::optional<ConvexPolygon> cur = a;
-  const Plane& wp = w.plane;
-  cur = clipToFront(*cur, Plane{-wp.normal, -wp.offset - slack}, tol);
-  if (cur) cur = clipToFront(*cur, Plane{wp.normal, wp.offset - slack}, tol);
-  const size_t n = w.vertices.size();
-  for (size_t i = 0; cur && i < n; ++i) {
-    const Vec3& a0 = w.vertices[i];
-    const Vec3& a1 = w.vertices[(i + 1) % n];
-    const Vec3 out = normalize(cross(a1 - a0, wp.normal));
-    // keep out·x <= out·a0 + slack
-    cur = clipToFront(*cur, Plane{-out, -dot(out, a0) - slack}, tol);
-  }
-  return cur;
+  return clipToPrism(a, w, slack, slack, tol);
 }
 
 /// The part of `a` inside the box `b` (a convex polygon: `a` clipped by six planes), or nullopt.
@@ -237,17 +242,8 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
 /// edges: an overlap, not a neighbour in the plane sharing an edge.
 bool overlapsInside(const ConvexPolygon& a, const ConvexPolygon& w, double slack,
                     const Tolerance& tol) {
-  std::optional<ConvexPolygon> cur = a;
-  const Plane& wp = w.plane;
-  cur = clipToFront(*cur, Plane{-wp.normal, -wp.offset - slack}, tol);
-  if (cur) cur = clipToFront(*cur, Plane{wp.normal, wp.offset - slack}, tol);
-  const size_t n = w.vertices.size();
-  for (size_t i = 0; cur && i < n; ++i) {
-    const Vec3& a0 = w.vertices[i];
-    const Vec3 out = normalize(cross(w.vertices[(i + 1) % n] - a0, wp.normal));
-    cur = clipToFront(*cur, Plane{-out, -dot(out, a0) + slack}, tol);  // out·x <= out·a0 - slack
-  }
-  return cur && cur->area() > 0;
+  const std::optional<ConvexPolygon> inside = clipToPrism(a, w, slack, -slack, tol);
+  return inside && inside->area() > 0;
 }
 
 /// Pieces of patches across the openings that overlap them. The BSP may move a patch onto a
