@@ -302,7 +302,8 @@ size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, co
       }
     }
   }
-  // Placed after the scan, so that a piece placed here does not spread further, once per cell.
+  // Placed after the scan, so that a piece placed here does not spread across further openings;
+  // the same piece reached through two openings of one cell is placed once.
   size_t placed = 0;
   for (Extra& e : extras) {
     auto& where = out.placements[e.piece.patch];
