@@ -29,6 +29,20 @@ struct BoundaryFace {
 struct CellPart {
   ConvexPolyhedron shape;
   std::vector<uint32_t> patches;  ///< as Cell::patches, for this piece
+  /// The cell's portals on this piece's boundary (indices into Subdivision::portals), sorted.
+  std::vector<uint32_t> portals;
+  /// The openings between this piece and the cell's other pieces (indices into
+  /// Cell::innerPortals), sorted.
+  std::vector<uint32_t> innerPortals;
+};
+
+/// An opening between two pieces of a merged cell: the BSP portal the merge dropped from the
+/// cell graph, kept so that a search may walk the pieces one by one (patch_search.cpp). Its
+/// polygon is counter-clockwise seen from piece `front` (as Portal's).
+struct InnerPortal {
+  ConvexPolygon polygon;
+  uint32_t back = 0, front = 0;  ///< indices into Cell::parts
+  uint32_t other(uint32_t part) const { return part == back ? front : back; }
 };
 
 /// A leaf cell of the BSP: a convex polyhedron of air (or of a solid's inside). After
@@ -40,6 +54,7 @@ struct Cell {
   /// Empty, or the convex leaves of a cell that is not convex (no patch faces into any of them:
   /// visibility/convex_merge.h), each with its patches.
   std::vector<CellPart> parts;
+  std::vector<InnerPortal> innerPortals;  ///< between the parts (empty when `parts` is)
   std::vector<BoundaryFace> faces;  ///< parallel to shape.faces (empty after mergeConvexCells)
   /// Patches inside the cell or on its boundary (coaffine with a face), sorted, no repeats.
   std::vector<uint32_t> patches;

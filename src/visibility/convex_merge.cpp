@@ -201,6 +201,7 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
   Subdivision out;
   out.stats = sub.stats;
   std::vector<uint32_t> cellOf(n, kNone), rootCell(n, kNone);
+  std::vector<uint32_t> partOf(n, kNone);  // a blind leaf's index among its cell's parts
   for (uint32_t c = 0; c < n; ++c) {
     const uint32_t r = findRoot(parent, c);
     if (rootCell[r] == kNone) {
@@ -212,8 +213,10 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
         cell.facingPatches = std::move(parts[r].facing);
       } else if (!parts[r].leaves.empty()) {
         std::sort(parts[r].leaves.begin(), parts[r].leaves.end());
-        for (uint32_t leaf : parts[r].leaves)
-          cell.parts.push_back({sub.cells[leaf].shape, sub.cells[leaf].patches});
+        for (uint32_t leaf : parts[r].leaves) {
+          partOf[leaf] = static_cast<uint32_t>(cell.parts.size());
+          cell.parts.push_back({sub.cells[leaf].shape, sub.cells[leaf].patches, {}, {}});
+        }
         cell.patches = std::move(parts[r].patches);
       } else {
         cell.shape = sub.cells[c].shape;
@@ -229,10 +232,22 @@ Subdivision mergeConvexCells(const Scene& scene, Subdivision sub, ConvexMergeSta
     Portal q = p;
     q.back = cellOf[p.back];
     q.front = cellOf[p.front];
-    if (q.back == q.front) continue;
+    if (q.back == q.front) {
+      // Between two leaves of one cell: merged blind leaves keep it as an inner opening (two
+      // leaves merged as a convex union have none: their common face is gone).
+      Cell& cell = out.cells[q.back];
+      if (cell.parts.empty()) continue;
+      const auto inner = static_cast<uint32_t>(cell.innerPortals.size());
+      cell.innerPortals.push_back({p.polygon, partOf[p.back], partOf[p.front]});
+      cell.parts[partOf[p.back]].innerPortals.push_back(inner);
+      cell.parts[partOf[p.front]].innerPortals.push_back(inner);
+      continue;
+    }
     const auto id = static_cast<uint32_t>(out.portals.size());
     out.cells[q.back].portals.push_back(id);
     out.cells[q.front].portals.push_back(id);
+    if (partOf[p.back] != kNone) out.cells[q.back].parts[partOf[p.back]].portals.push_back(id);
+    if (partOf[p.front] != kNone) out.cells[q.front].parts[partOf[p.front]].portals.push_back(id);
     out.portals.push_back(std::move(q));
   }
   if (sub.leafCell.empty()) {

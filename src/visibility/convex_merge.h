@@ -41,9 +41,10 @@ struct ConvexMergeStats {
 ///   (every vertex of each lies within every halfspace of the other except those on the common
 ///   plane, and the intersection of those halfspaces has the two volumes): the merged cell's
 ///   `shape` is that intersection.
-/// Patches are the union of the parts' (all on the boundary). Portals between parts are dropped
-/// and the others renumbered (kept in order). The result's cells have no `faces` (nothing after
-/// the merge reads them). `leafCell` maps each BSP leaf to its cell. Deterministic.
+/// Patches are the union of the parts' (all on the boundary). Portals between parts leave the
+/// cell graph (a part's leaves keep them as the cell's `innerPortals`, and each part lists its
+/// portals) and the others are renumbered (kept in order). The result's cells have no `faces`
+/// (nothing after the merge reads them). `leafCell` maps each BSP leaf to its cell. Deterministic.
 /// `sub` is taken by value so that a caller done with it can move it in (its BSP tree is moved
 /// on, not copied).
 Subdivision mergeConvexCells(const Scene& scene, Subdivision sub,

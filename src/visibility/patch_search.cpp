@@ -31,6 +31,11 @@ struct CellPatch {
   /// slack of it), or -1. Two pieces on one boundary plane see each other only along lines
   /// within that slack of the plane, where a third piece merged onto it may stand.
   int32_t boundaryPlane = -1;
+  /// In a cell merged from several leaves, the leaf (index into Cell::parts) the piece was
+  /// placed in; -1 in a convex cell.
+  int32_t part = -1;
+  /// Placed by placeThinWallSlivers: in a merged cell, searched leaf by leaf (visitPart).
+  bool sliver = false;
 };
 
 /// The part of p within the cell, grown by the BSP's plane-merging tolerance so that pieces moved
@@ -126,7 +131,9 @@ std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
 /// becomes a piece of S in B too, searched from and searched for, when
 /// - B is a convex cell with no patch inside it (its air is all behind W) and a patch faces into
 ///   it from a boundary plane that no patch facing away shares (it is air, not a solid's inside
-///   seen by hidden faces),
+///   seen by hidden faces), or, with `outside` (PropagationOptions::outsideSlivers), B is a leaf
+///   of a merged cell (the level's outside) with an opening into a convex cell a patch faces
+///   into (the piece is then searched leaf by leaf: PatchSearch::visitPart),
 /// - either W faces away from B, S reaches W's front side, and the part of W strictly in front of
 ///   S comes within the slack of that piece (a ray leaving S's front can cross it),
 /// - or W faces into B with S behind it (a solid's far side, or the back of a one-sided wall),
@@ -137,11 +144,14 @@ std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
 ///   and are searched from S's own piece: a ledge, a step; only a pocket of air shut by the
 ///   solid's corner needs the sliver). Only those parts (their box) become the piece, and
 /// - part of B lies in front of S.
-/// Not covered (measured, docs/BENCHMARKS.md): cells with patches inside them or merged from
-/// several leaves, where the air behind W is not known without a finer test.
+/// Not covered (measured, docs/BENCHMARKS.md): cells with patches inside them, where the air
+/// behind W is not known without a finer test, and by default the leaves of merged cells: on the
+/// sector levels every room ends at one-sided walls with the outside behind them, and slivers
+/// there list 2-3 times the pairs, searched leaf by leaf, for the one pair per level that 10^6
+/// rays find at the contact distance 1e-5 (none at 1e-6).
 /// Returns the number of pieces placed.
 size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
-                            PatchPlacement& out) {
+                            bool outside, PatchPlacement& out) {
   std::vector<Aabb> boxes;
   boxes.reserve(scene.patches.size());
   for (const Patch& p : scene.patches) boxes.push_back(p.polygon.bounds());
@@ -165,33 +175,41 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
   };
   std::vector<uint32_t> near;
   size_t placed = 0;
-  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
-    const Cell& cell = sub.cells[c];
-    if (!cell.interiorPatches.empty() || !cell.parts.empty()) continue;
+  // One convex region B of cell c: the cell itself, or one leaf (part) of a merged cell, with the
+  // patches the BSP placed on it and the indices of their pieces in cellPatches[c].
+  auto slivers = [&](uint32_t c, const ConvexPolyhedron& shape,
+                     const std::vector<uint32_t>& patches, const std::vector<uint32_t>& portals,
+                     int32_t part) {
+    std::vector<size_t> mine;  // B's own pieces (slivers placed below are not among them)
+    for (size_t k = 0; k < out.cellPatches[c].size(); ++k)
+      if (out.cellPatches[c][k].part == part) mine.push_back(k);
     const std::vector<CellPatch>& listed = out.cellPatches[c];
     std::vector<size_t> walls;  // the BSP-listed pieces of B that face away from it
-    for (size_t k = 0; k < listed.size(); ++k)
+    for (size_t k : mine)
       if (!listed[k].facesIn) walls.push_back(k);
-    const size_t listedHere = listed.size();  // slivers placed below are not walls
     // B is air when a patch faces into it from a boundary plane that no patch facing away shares
     // (a face covered by a coincident one facing away is a solid's hidden face: a floor under a
     // wall box). In a solid's inside a ray that crossed W would see only backs of faces.
-    const bool air = std::any_of(listed.begin(), listed.end(), [&](const CellPatch& in) {
+    const bool air = std::any_of(mine.begin(), mine.end(), [&](size_t i) {
+      const CellPatch& in = listed[i];
       return in.facesIn &&
              (in.boundaryPlane < 0 || std::none_of(walls.begin(), walls.end(), [&](size_t k) {
                 return listed[k].boundaryPlane == in.boundaryPlane;
               }));
     });
-    if (!air) continue;
+    // A leaf of a merged cell has no patch facing into it as the BSP placed it, and whether air
+    // lies behind W is not known there: with `outside` every leaf is taken for air. The leaf
+    // walk then finds what a ray crossing W could reach (in a solid's inside, only backs).
+    if (!air && !(part >= 0 && outside)) return;
     near.clear();
-    grid.gather(cell.shape.bounds(), 2 * slack, near);
+    grid.gather(shape.bounds(), 2 * slack, near);
     std::sort(near.begin(), near.end());
     for (uint32_t p : near) {
-      if (std::binary_search(cell.patches.begin(), cell.patches.end(), p)) continue;
+      if (std::binary_search(patches.begin(), patches.end(), p)) continue;
       const ConvexPolygon& poly = scene.patches[p].polygon;
-      const PlaneSide side = cell.shape.classify(poly.plane, tol);
+      const PlaneSide side = shape.classify(poly.plane, tol);
       if (side != PlaneSide::Front && side != PlaneSide::Spanning) continue;
-      auto piece = clipToCell(poly, cell.shape, tol);
+      auto piece = clipToCell(poly, shape, tol);
       if (!piece) continue;
       const bool crosses = std::any_of(walls.begin(), walls.end(), [&](size_t k) {
         return nearWallPart(poly, *piece, listed[k]).has_value();  // p is not listed in B
@@ -200,24 +218,23 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
         // Only the box of the parts near such walls: a ray from elsewhere on the piece would
         // cross them further than the slack from its start.
         Aabb box;
-        for (size_t k = 0; k < listedHere; ++k)
+        for (size_t k : mine)
           if (listed[k].facesIn)
-            if (const std::optional<ConvexPolygon> part = nearWallPart(poly, *piece, listed[k]))
-              box.add(part->bounds());
+            if (const std::optional<ConvexPolygon> close = nearWallPart(poly, *piece, listed[k]))
+              box.add(close->bounds());
         if (box.empty()) continue;
         // Where an opening of the cell into a cell S is placed in passes near those parts, rays
         // a slack beside the ones cutting through the wall reach the cell through that opening
         // and are searched from S there (a wall S ends at from behind: a ledge, a step); only
         // where no such opening passes by, as in a wedge of air shut by a solid's corner, is the
         // sliver needed. (Without this test q3-oa_dm2 listed 11 % more pairs, q3-dm4ish 7 %.)
-        const bool openingNearby =
-            std::any_of(cell.portals.begin(), cell.portals.end(), [&](uint32_t q) {
-              const Portal& portal = sub.portals[q];
-              const uint32_t o = portal.other(c);
-              return portal.polygon.bounds().meets(box, slack) &&
-                     std::any_of(out.placements[p].begin(), out.placements[p].end(),
-                                 [&](const auto& pl) { return pl.first == o; });
-            });
+        const bool openingNearby = std::any_of(portals.begin(), portals.end(), [&](uint32_t q) {
+          const Portal& portal = sub.portals[q];
+          const uint32_t o = portal.other(c);
+          return portal.polygon.bounds().meets(box, slack) &&
+                 std::any_of(out.placements[p].begin(), out.placements[p].end(),
+                             [&](const auto& pl) { return pl.first == o; });
+        });
         if (openingNearby) continue;
         const double grow = tol.length();
         piece = clipToBox(*piece,
@@ -228,11 +245,25 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
       cp.patch = p;
       cp.facesIn = true;
       cp.interior = side == PlaneSide::Spanning;
-      cp.boundaryPlane = boundaryPlaneOf(*piece, cell.shape, tol);
+      cp.part = part;
+      cp.sliver = true;
+      cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
       cp.piece = std::move(*piece);
       out.placements[p].emplace_back(c, out.cellPatches[c].size());
       out.cellPatches[c].push_back(std::move(cp));
       ++placed;
+    }
+  };
+  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+    const Cell& cell = sub.cells[c];
+    if (!cell.interiorPatches.empty()) continue;
+    if (cell.parts.empty()) {
+      slivers(c, cell.shape, cell.patches, cell.portals, -1);
+    } else {
+      for (size_t k = 0; k < cell.parts.size(); ++k) {
+        const CellPart& leaf = cell.parts[k];
+        slivers(c, leaf.shape, leaf.patches, leaf.portals, static_cast<int32_t>(k));
+      }
     }
   }
   return placed;
@@ -284,20 +315,22 @@ size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, co
           continue;
         if (!overlapsInside(cp.piece, portal.polygon, slack, tol)) continue;
         const Cell& other = sub.cells[o];
-        auto add = [&](const ConvexPolyhedron& shape) {
+        auto add = [&](const ConvexPolyhedron& shape, int32_t part) {
           std::optional<ConvexPolygon> piece = clipToCell(poly, shape, tol);
           if (!piece) return;
           CellPatch extra;
           extra.patch = cp.patch;
           extra.facesIn = poly.plane.distance(shape.centroid()) > 0;
           extra.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
+          extra.part = part;
           extra.piece = std::move(*piece);
           extras.push_back({o, std::move(extra)});
         };
         if (other.parts.empty()) {
-          add(other.shape);
+          add(other.shape, -1);
         } else {
-          for (const CellPart& part : other.parts) add(part.shape);
+          for (size_t k = 0; k < other.parts.size(); ++k)
+            add(other.parts[k].shape, static_cast<int32_t>(k));
         }
       }
     }
@@ -319,7 +352,8 @@ size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, co
   return placed;
 }
 
-PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const Tolerance& tol) {
+PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
+                            bool outsideSlivers) {
   PatchPlacement out;
   std::vector<std::vector<CellPatch>>& cellPatches = out.cellPatches;
   Placements& placements = out.placements;
@@ -330,7 +364,7 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
     // A cell merged from several convex leaves is placed leaf by leaf (each piece faces in or out
     // of its own leaf); a convex cell is its own single part.
     auto place = [&](const ConvexPolyhedron& shape, const std::vector<uint32_t>& patches,
-                     const std::vector<uint32_t>& facing) {
+                     const std::vector<uint32_t>& facing, int32_t part) {
       const Vec3 inside = shape.centroid();
       for (uint32_t p : patches) {
         const ConvexPolygon& poly = scene.patches[p].polygon;
@@ -349,6 +383,7 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
         cp.facesIn = placedFacing || centroidFacing;
         if (placedFacing != centroidFacing) cp.interior = cp.tilted = true;
         cp.whole = piece->area() >= poly.area() * (1 - 1e-9);
+        cp.part = part;
         cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
         cp.piece = std::move(*piece);
         placements[p].emplace_back(c, cellPatches[c].size());
@@ -356,14 +391,15 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
       }
     };
     if (cell.parts.empty()) {
-      place(cell.shape, cell.patches, cell.facingPatches);
+      place(cell.shape, cell.patches, cell.facingPatches, -1);
     } else {
       // Blind leaves: no patch faces into them as the BSP placed it.
-      for (const CellPart& part : cell.parts) place(part.shape, part.patches, {});
+      for (size_t k = 0; k < cell.parts.size(); ++k)
+        place(cell.parts[k].shape, cell.parts[k].patches, {}, static_cast<int32_t>(k));
     }
   }
   out.acrossPortals = placeAcrossCoplanarPortals(scene, sub, tol, out);
-  out.thinWallSlivers = placeThinWallSlivers(scene, sub, tol, out);
+  out.thinWallSlivers = placeThinWallSlivers(scene, sub, tol, outsideSlivers, out);
   return out;
 }
 
@@ -384,10 +420,22 @@ class PatchSearch {
         stabber_(tol),
         flags_(placements.size(), 0),
         onPath_(sub.cells.size(), 0),
+        partPieces_(sub.cells.size()),
         unsaturatedCount_(sub.cells.size(), 0),
         unsaturated_(sub.cells.size()),
         fullyMarked_(sub.cells.size()),
         tol_(tol) {
+    size_t maxParts = 0;
+    for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+      const size_t parts = sub.cells[c].parts.size();
+      maxParts = std::max(maxParts, parts);
+      if (parts == 0) continue;
+      partPieces_[c].resize(parts);
+      for (uint32_t k = 0; k < cellPatches[c].size(); ++k)
+        if (cellPatches[c][k].part >= 0)
+          partPieces_[c][static_cast<size_t>(cellPatches[c][k].part)].push_back(k);
+    }
+    partOnPath_.assign(maxParts, 0);
     for (uint32_t c = 0; c < sub.cells.size(); ++c) {
       baseCount_.push_back(static_cast<uint32_t>(cellPatches[c].size()));
       if (!cellPatches[c].empty()) unsaturated_.insert(c);
@@ -423,7 +471,16 @@ class PatchSearch {
             result.sameCellVisible.push_back(t.patch);
       }
       // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
-      visit(cell, 0, cellReach_.empty() ? nullptr : &cellReach_[cell]);
+      const CellSet* reach = cellReach_.empty() ? nullptr : &cellReach_[cell];
+      // Other pieces in merged cells (a patch's piece facing into a leaf by its centroid, one
+      // placed across an opening) are searched from the whole cell: walked leaf by leaf they
+      // ran over the search budget more often, and the budget's answer, every cell any opening
+      // of the merged cell leads to, listed more (e3m4 +2.2 % pairs, base1-test +0.1 %).
+      if (cp.sliver && cp.part >= 0) {
+        visitPart(cell, static_cast<uint32_t>(cp.part), 0, reach);
+      } else {
+        visit(cell, 0, reach);
+      }
     }
     result.overBudget = overBudget_;
     for (uint32_t c : markedCells_) fullyMarked_.erase(c);
@@ -561,15 +618,10 @@ class PatchSearch {
       if (reach) nextReach.assignIntersection(*reach, through);
       const CellSet& r = reach ? nextReach : through;
       if (!r.intersects(unsaturated_)) continue;  // nothing new can be seen that way
-      if (forward) {
-        scratch_ = p.polygon.vertices;
-      } else {
-        scratch_.assign(p.polygon.vertices.rbegin(), p.polygon.vertices.rend());
-      }
       // Over the budget the portal is still tested (one test per branch left on the path: a
       // bounded number), and a branch that passes is answered without exploring it: every cell
       // it might reach, whole.
-      if (stabber_.push(scratch_) == StabbingResult::Blocked) continue;
+      if (!pushDirected(p.polygon, forward)) continue;
       if (exhausted()) {
         markCell(next);
         r.forEach([&](size_t c) { markCell(static_cast<uint32_t>(c)); });
@@ -581,6 +633,80 @@ class PatchSearch {
     onPath_[cell] = 0;
   }
 
+  /// The search from S's piece in one leaf (`part`) of a merged cell. Searched from the whole
+  /// cell, a piece sees through every opening of the cell as if the cell were convex, which on
+  /// a real level is its whole outside (convex_merge.h): a sliver of a patch behind a thin wall
+  /// (placeThinWallSlivers) there listed 1.8-2.2 times the pairs of doom-fd2-map01 and map03.
+  /// So the leaves are walked one by one through the cell's inner openings, each pushed as a
+  /// portal (a line meets a convex leaf in one segment, so it crosses the openings between the
+  /// leaves it passes in order): in each leaf its own pieces are tested, and the cell is left
+  /// through the openings on that leaf's boundary. The cell itself stays off the path: a line
+  /// may leave it and come back into another leaf, and that return is followed as any search
+  /// enters a merged cell, whole.
+  void visitPart(uint32_t cell, uint32_t part, size_t depth, const CellSet* reach) {
+    checkDeadline();
+    const Cell& c = sub_.cells[cell];
+    if (exhausted()) {
+      // Over the budget: every piece of the cell, and every cell the openings of the cell
+      // might lead to, whole (a bounded answer that holds whatever leaves the line passes).
+      markCell(cell);
+      for (uint32_t pid : c.portals) {
+        const Portal& p = sub_.portals[pid];
+        const uint32_t next = p.other(cell);
+        if (onPath_[next]) continue;
+        markCell(next);
+        const CellSet& through = might_.through(pid, p.front == next);
+        through.forEach([&](size_t o) {
+          if (!reach || reach->contains(o)) markCell(static_cast<uint32_t>(o));
+        });
+      }
+      return;
+    }
+    partOnPath_[part] = 1;
+    for (uint32_t k : partPieces_[cell][part]) testTarget(cellPatches_[cell][k]);
+    if (stack_.size() <= depth) stack_.resize(depth + 1);
+    const CellPart& leaf = c.parts[part];
+    for (uint32_t pid : leaf.portals) {
+      const Portal& p = sub_.portals[pid];
+      const uint32_t next = p.other(cell);
+      if (onPath_[next]) continue;
+      const bool forward = p.front == next;
+      const CellSet& through = might_.through(pid, forward);
+      CellSet& nextReach = stack_[depth];
+      if (reach) nextReach.assignIntersection(*reach, through);
+      const CellSet& r = reach ? nextReach : through;
+      if (!r.intersects(unsaturated_)) continue;
+      if (!pushDirected(p.polygon, forward)) continue;
+      if (exhausted()) {
+        markCell(next);
+        r.forEach([&](size_t o) { markCell(static_cast<uint32_t>(o)); });
+      } else {
+        visit(next, depth + 1, &r);
+      }
+      stabber_.pop();
+    }
+    for (uint32_t ip : leaf.innerPortals) {
+      const InnerPortal& p = c.innerPortals[ip];
+      const uint32_t next = p.other(part);
+      if (partOnPath_[next]) continue;
+      if (!pushDirected(p.polygon, p.front == next)) continue;
+      visitPart(cell, next, depth + 1, reach);
+      stabber_.pop();
+    }
+    partOnPath_[part] = 0;
+  }
+
+  /// Pushes `polygon` crossed towards its front (`forward`) or its back; false when the sequence
+  /// is then blocked (nothing pushed).
+  bool pushDirected(const ConvexPolygon& polygon, bool forward) {
+    if (forward) {
+      scratch_ = polygon.vertices;
+    } else {
+      scratch_.assign(polygon.vertices.rbegin(), polygon.vertices.rend());
+    }
+    return stabber_.push(scratch_) != StabbingResult::Blocked;
+  }
+
   const Subdivision& sub_;
   const std::vector<std::vector<CellPatch>>& cellPatches_;
   const Placements& placements_;
@@ -590,6 +716,9 @@ class PatchSearch {
   std::vector<uint8_t> flags_;
   std::vector<uint32_t> touched_, touchedCells_;
   std::vector<uint8_t> onPath_;
+  // Per merged cell and leaf, the indices of the leaf's pieces in cellPatches_[cell].
+  std::vector<std::vector<std::vector<uint32_t>>> partPieces_;
+  std::vector<uint8_t> partOnPath_;  // the leaves on the path of visitPart's walk
   std::vector<uint32_t> baseCount_, unsaturatedCount_;
   CellSet unsaturated_;
   std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
@@ -612,7 +741,7 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
                                              VisibilityStats& st) {
   const size_t n = scene.patches.size();
   const Tolerance tol = sub.tree.tol;
-  const PatchPlacement placed = placePatches(scene, sub, tol);
+  const PatchPlacement placed = placePatches(scene, sub, tol, options.outsideSlivers);
   const std::vector<std::vector<CellPatch>>& cellPatches = placed.cellPatches;
   const Placements& placements = placed.placements;
   st.thinWallSlivers = placed.thinWallSlivers;

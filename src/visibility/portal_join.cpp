@@ -68,6 +68,8 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
     groups[{p.back, p.front, plane}].push_back(i);
   }
   std::vector<uint8_t> joinedAway(sub.portals.size(), 0);  // now inside another portal
+  std::vector<uint32_t> into(sub.portals.size());          // the portal each was joined into
+  std::iota(into.begin(), into.end(), 0u);
   for (auto& [key, ids] : groups) {
     if (ids.size() < 2) continue;
     // A work queue of pieces to try against all the others: a piece that grew goes back on it,
@@ -98,6 +100,7 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
         sub.portals[ids[keep]].polygon = std::move(*u);
         gone[drop] = 1;
         joinedAway[ids[drop]] = 1;
+        into[ids[drop]] = ids[keep];
         i = keep;  // scan on with the grown piece (the rest of j: the others are tried on requeue)
         grew = true;
       }
@@ -108,10 +111,28 @@ PortalJoinStats joinCoplanarPortals(Subdivision& sub) {
     }
   }
   std::vector<Portal> kept;
+  std::vector<uint32_t> renumbered(sub.portals.size(), 0);
   for (uint32_t i = 0; i < sub.portals.size(); ++i)
-    if (!joinedAway[i]) kept.push_back(std::move(sub.portals[i]));
+    if (!joinedAway[i]) {
+      renumbered[i] = static_cast<uint32_t>(kept.size());
+      kept.push_back(std::move(sub.portals[i]));
+    }
+  // A piece joined into one that was joined on in turn: follow the chain to the portal kept.
+  auto newId = [&](uint32_t i) {
+    while (into[i] != i) i = into[i];
+    return renumbered[i];
+  };
   sub.portals = std::move(kept);
-  for (Cell& cell : sub.cells) cell.portals.clear();
+  for (Cell& cell : sub.cells) {
+    cell.portals.clear();
+    // A joined portal spanning two leaves of a merged cell is listed on both: each leaf then
+    // sees through a little more than its own piece, which only lets more lines through.
+    for (CellPart& part : cell.parts) {
+      for (uint32_t& id : part.portals) id = newId(id);
+      std::sort(part.portals.begin(), part.portals.end());
+      part.portals.erase(std::unique(part.portals.begin(), part.portals.end()), part.portals.end());
+    }
+  }
   for (uint32_t id = 0; id < sub.portals.size(); ++id) {
     sub.cells[sub.portals[id].back].portals.push_back(id);
     sub.cells[sub.portals[id].front].portals.push_back(id);

@@ -24,7 +24,8 @@ struct PortalJoinStats {
 /// back and front) on the same BSP plane when the convex hull of both has no more area than the
 /// two (up to rounding): that hull is then their union, the new portal. The merged polygon keeps
 /// the first piece's plane (its normal still points from back into front). Portals are renumbered
-/// in the order of their first piece and each cell's portal list rebuilt. Deterministic.
+/// in the order of their first piece and each cell's portal list rebuilt (a merged cell's parts
+/// list the joined portal their pieces went into). Deterministic.
 PortalJoinStats joinCoplanarPortals(Subdivision& sub);
 
 }  // namespace gv

@@ -102,6 +102,44 @@ TEST(ConvexMerge, TheOutsideBecomesOneCellAndLeavesMapToCells) {
   EXPECT_GT(merged.cells[*outsideCell].parts.size(), 1u);
   // cellAt follows the merge.
   EXPECT_EQ(merged.cellAt({5, 2, 1.5}), *outsideCell);
+  // The leaves keep the openings between them (the outside was merged across them, so they link
+  // every leaf to every other), each listed by its two leaves, whose boundaries it lies on; and
+  // each portal of the cell is listed by a leaf it lies on.
+  const Cell& out = merged.cells[*outsideCell];
+  const Tolerance tol = merged.tree.tol;
+  std::vector<std::vector<uint32_t>> next(out.parts.size());
+  for (uint32_t i = 0; i < out.innerPortals.size(); ++i) {
+    const InnerPortal& ip = out.innerPortals[i];
+    ASSERT_LT(ip.back, out.parts.size());
+    ASSERT_LT(ip.front, out.parts.size());
+    EXPECT_NE(ip.back, ip.front);
+    for (uint32_t k : {ip.back, ip.front}) {
+      const auto& list = out.parts[k].innerPortals;
+      EXPECT_TRUE(std::binary_search(list.begin(), list.end(), i));
+      EXPECT_TRUE(out.parts[k].shape.contains(ip.polygon.centroid(), tol));
+    }
+    next[ip.back].push_back(ip.front);
+    next[ip.front].push_back(ip.back);
+  }
+  std::vector<char> reached(out.parts.size(), 0);
+  std::vector<uint32_t> stack{0};
+  reached[0] = 1;
+  while (!stack.empty()) {
+    const uint32_t k = stack.back();
+    stack.pop_back();
+    for (uint32_t o : next[k])
+      if (!reached[o]) reached[o] = 1, stack.push_back(o);
+  }
+  EXPECT_EQ(std::count(reached.begin(), reached.end(), 1), static_cast<long>(out.parts.size()));
+  for (uint32_t pid : out.portals) {
+    bool onALeaf = false;
+    for (const CellPart& part : out.parts)
+      if (std::binary_search(part.portals.begin(), part.portals.end(), pid)) {
+        onALeaf = true;
+        EXPECT_TRUE(part.shape.contains(merged.portals[pid].polygon.centroid(), tol));
+      }
+    EXPECT_TRUE(onALeaf) << "portal " << pid;
+  }
   // Portals join two different cells and are listed by both.
   for (uint32_t pid = 0; pid < merged.portals.size(); ++pid) {
     const Portal& p = merged.portals[pid];

@@ -110,30 +110,57 @@ TEST(PortalJoin, ThousandsOfPiecesOfOnePlaneJoinWhereTheyCan) {
 }
 
 TEST(PortalJoin, EveryPieceOfARealLevelStaysInsideAPortalBetweenItsCells) {
-  // An arena level's merged cells, before and after the join: every piece's vertices lie in one
-  // joined portal with the same back and front (conservative: no opening shrinks), and the join
-  // removes pieces (the reason it exists).
-  const std::string level = std::string(GV_SHARED_DATA_DIR) + "/levels/q3-oa_ctf2.obj";
-  if (!std::filesystem::exists(level)) GTEST_SKIP() << level << " not present";
-  const Scene scene = removeHiddenFaces(loadScene(level));
-  Subdivision merged = mergeConvexCells(scene, buildVisibilitySubdivision(scene, {}));
-  const std::vector<Portal> pieces = merged.portals;
-  const PortalJoinStats stats = joinCoplanarPortals(merged);
-  EXPECT_EQ(stats.portalsBefore, pieces.size());
-  EXPECT_LT(stats.portalsAfter, pieces.size() * 9 / 10);
-  const Tolerance tol = merged.tree.tol;
-  for (const Portal& piece : pieces) {
-    bool covered = false;
-    for (uint32_t id : merged.cells[piece.back].portals) {
-      const Portal& p = merged.portals[id];
-      if (p.back != piece.back || p.front != piece.front) continue;
-      if (dot(p.polygon.normal(), piece.polygon.normal()) < 1 - 1e-6) continue;
-      bool all = true;
-      for (const Vec3& v : piece.polygon.vertices) all = all && p.polygon.contains(v, tol);
-      if (all) covered = true;
+  // An arena level's and a sector level's merged cells, before and after the join: every piece's
+  // vertices lie in one joined portal with the same back and front (conservative: no opening
+  // shrinks), and the join removes pieces (the reason it exists). The sector level's outside is one
+  // cell merged from many leaves, whose lists of portals the join renumbers.
+  size_t leafPieces = 0;
+  for (const char* name : {"q3-oa_ctf2", "doom-fd2-map01"}) {
+    const std::string level = std::string(GV_SHARED_DATA_DIR) + "/levels/" + name + ".obj";
+    if (!std::filesystem::exists(level)) GTEST_SKIP() << level << " not present";
+    const Scene scene = removeHiddenFaces(loadScene(level));
+    Subdivision merged = mergeConvexCells(scene, buildVisibilitySubdivision(scene, {}));
+    const std::vector<Portal> pieces = merged.portals;
+    std::vector<std::vector<std::vector<uint32_t>>> partPieces;  // per cell, per leaf: its pieces
+    for (const Cell& cell : merged.cells) {
+      partPieces.emplace_back();
+      for (const CellPart& part : cell.parts) partPieces.back().push_back(part.portals);
     }
-    EXPECT_TRUE(covered) << "a piece between cells " << piece.back << " and " << piece.front;
+    const PortalJoinStats stats = joinCoplanarPortals(merged);
+    EXPECT_EQ(stats.portalsBefore, pieces.size());
+    EXPECT_LT(stats.portalsAfter, pieces.size() * 9 / 10);
+    const Tolerance tol = merged.tree.tol;
+    for (const Portal& piece : pieces) {
+      bool covered = false;
+      for (uint32_t id : merged.cells[piece.back].portals) {
+        const Portal& p = merged.portals[id];
+        if (p.back != piece.back || p.front != piece.front) continue;
+        if (dot(p.polygon.normal(), piece.polygon.normal()) < 1 - 1e-6) continue;
+        bool all = true;
+        for (const Vec3& v : piece.polygon.vertices) all = all && p.polygon.contains(v, tol);
+        if (all) covered = true;
+      }
+      EXPECT_TRUE(covered) << "a piece between cells " << piece.back << " and " << piece.front;
+    }
+    // A leaf of a merged cell lists the joined portal its pieces went into.
+    for (uint32_t c = 0; c < merged.cells.size(); ++c)
+      for (size_t k = 0; k < partPieces[c].size(); ++k)
+        for (uint32_t before : partPieces[c][k]) {
+          ++leafPieces;
+          const Portal& piece = pieces[before];
+          const auto& now = merged.cells[c].parts[k].portals;
+          EXPECT_TRUE(std::any_of(
+              now.begin(), now.end(),
+              [&](uint32_t id) {
+                const Portal& p = merged.portals[id];
+                return p.back == piece.back && p.front == piece.front &&
+                       std::all_of(piece.polygon.vertices.begin(), piece.polygon.vertices.end(),
+                                   [&](const Vec3& v) { return p.polygon.contains(v, tol); });
+              }))
+              << "cell " << c << " leaf " << k;
+        }
   }
+  EXPECT_GT(leafPieces, 0u);
 }
 
 }  // namespace
