@@ -197,10 +197,12 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
                 return listed[k].boundaryPlane == in.boundaryPlane;
               }));
     });
-    // A leaf of a merged cell has no patch facing into it as the BSP placed it, and whether air
-    // lies behind W is not known there: with `outside` every leaf is taken for air. The leaf
-    // walk then finds what a ray crossing W could reach (in a solid's inside, only backs).
-    if (!air && !(part >= 0 && outside)) return;
+    // A leaf of a merged cell has no patch facing into it as the BSP placed it (a piece may face
+    // in by the leaf's centroid), and whether air lies behind W is not known there: with
+    // `outside` every leaf is taken for air, and the leaf walk finds what a ray crossing W could
+    // reach (in a solid's inside, only backs); without it, none is (the air test above, applied
+    // to leaves, added 2.2 % pairs on e3m4 and fixed no miss).
+    if (part >= 0 ? !outside : !air) return;
     near.clear();
     grid.gather(shape.bounds(), 2 * slack, near);
     std::sort(near.begin(), near.end());
