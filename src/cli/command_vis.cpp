@@ -73,7 +73,7 @@ Action addVisCommand(CLI::App& app) {
                 "Also search from the slivers of patches that end at a one-sided wall with the "
                 "level's outside behind it (rays crossing the wall within the model tolerance "
                 "of their start): conservative at the contact distance 1e-5 on sector levels, "
-                "at 2-3 times the pairs");
+                "at 2.4-4.5 times the pairs");
   cmd->add_flag("--json", s->json, "Print the statistics as JSON on stdout");
   addKeepHiddenFlag(*cmd, s->keepHidden);
   cmd->add_flag("--contact-split", s->contactSplit,

@@ -89,7 +89,7 @@ struct PropagationOptions {
   /// outside: rays that leave a patch within the model tolerance of a one-sided wall it ends at,
   /// cross it (the contact rule does not count that hit) and go on through the outside and in
   /// through an opening. Off by default: on the sector levels, whose rooms all end at one-sided
-  /// walls with the outside behind, it lists 2-3 times the pairs (docs/BENCHMARKS.md) for a
+  /// walls with the outside behind, it lists 2.4-4.5 times the pairs (docs/BENCHMARKS.md) for a
   /// pair or two that 10^6 rays at a contact distance of 1e-5 find, and none at 1e-6.
   bool outsideSlivers = false;
 };
