@@ -659,18 +659,7 @@ class PatchSearch {
       // cell the opening might lead to (a bounded number of tests, whatever leaves the line
       // passes in between).
       markCell(cell);
-      for (uint32_t pid : c.portals) {
-        const Portal& p = sub_.portals[pid];
-        const uint32_t next = p.other(cell);
-        if (onPath_[next]) continue;
-        const bool forward = p.front == next;
-        if (!pushDirected(p.polygon, forward)) continue;
-        markCell(next);
-        might_.through(pid, forward).forEach([&](size_t o) {
-          if (!reach || reach->contains(o)) markCell(static_cast<uint32_t>(o));
-        });
-        stabber_.pop();
-      }
+      for (uint32_t pid : c.portals) leaveThrough(cell, pid, depth, reach);
       return;
     }
     partOnPath_[part] = 1;
