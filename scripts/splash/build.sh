@@ -26,7 +26,6 @@ awk 'done == 0 && /Print out running time/ { print "            { extern void gv
   "$R/rad_main.c.in" > "$R/rad_main.c.in.gv" && mv "$R/rad_main.c.in.gv" "$R/rad_main.c.in"
 grep -q gv_dump_patches "$R/rad_main.c.in" || { echo "build.sh: the hook's anchor is gone from rad_main.c.in" >&2; exit 2; }
 sed -i 's/^OBJS = \(.*\)$/OBJS = \1 gv_dump.o/' "$R/Makefile"
-sed -i 's/^gv_dump.o:.*//' "$R/Makefile"
 printf 'gv_dump.o: gv_dump.c $(HS)\n' >> "$R/Makefile"
 make -C "$R" -j 2 > "$B/build.log" 2>&1 || { tail -30 "$B/build.log" >&2; exit 1; }
 echo "$R/RADIOSITY"

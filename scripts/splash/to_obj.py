@@ -39,9 +39,9 @@ def main():
     mtl = os.path.splitext(obj)[0] + ".mtl"
     with open(mtl, "w") as f:
         f.write("# SPLASH-3 RADIOSITY room: Kd = patch color, Ke = emittance\n")
-        for (kd, name) in materials.items():
-            f.write(f"newmtl {name}\nKd {kd[0]:.9g} {kd[1]:.9g} {kd[2]:.9g}\n"
-                    f"Ke {kd[3]:.9g} {kd[4]:.9g} {kd[5]:.9g}\n\n")
+        for key, name in materials.items():  # key: reflectance r g b, emittance r g b
+            f.write(f"newmtl {name}\nKd {key[0]:.9g} {key[1]:.9g} {key[2]:.9g}\n"
+                    f"Ke {key[3]:.9g} {key[4]:.9g} {key[5]:.9g}\n\n")
     with open(obj, "w") as f:
         f.write(f"# SPLASH-3 RADIOSITY patches ({len(patches)} triangles), from {os.path.basename(dump)}\n")
         f.write(f"mtllib {os.path.basename(mtl)}\n")
