@@ -152,6 +152,9 @@ Action addVisCommand(CLI::App& app) {
     if (v.pairsHiddenByOne > 0)
       fmt::print("pairs dropped as hidden whole behind one of their blockers: {}\n",
                  v.pairsHiddenByOne);
+    if (v.pairsHiddenByWall > 0)
+      fmt::print("pairs dropped as hidden by blockers lying in one plane together: {}\n",
+                 v.pairsHiddenByWall);
     fmt::print("blockers per PARTIAL pair {:.2f} (shaft cull {:.2f})\n", v.meanBlockersPerPartial,
                v.meanShaftCullPerPartial);
     fmt::print(

@@ -44,7 +44,7 @@ struct TubeOptions {
   /// only the weaker straddling line test (tube.cpp). Off: the paper's tests alone.
   bool splitStraddling = true;
   /// When no single blocker occludes, try coplanar groups of between blockers jointly
-  /// (coplanar_cover.h): a wall of several patches makes the tube INVISIBLE.
+  /// (geometry/coplanar_cover.h): a wall of several patches makes the tube INVISIBLE.
   bool coplanarCover = true;
 };
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "linespace/coplanar_cover.h"
+#include "geometry/coplanar_cover.h"
 
 namespace gv {
 
@@ -64,11 +64,12 @@ TubeVerdict classifyTube(const Tube& tube, std::span<const uint32_t> blockers,
   // Coplanar groups: the blockers whose vertices all lie on the plane of the group's first.
   const double eps = tol.length();
   std::vector<bool> grouped(between.size(), false);
-  std::vector<const BlockerGeometry*> group;
+  std::vector<PlanarOutline> group;
+  const auto outline = [](const BlockerGeometry& b) { return PlanarOutline{&b.plane, b.vertices}; };
   for (size_t i = 0; i < between.size(); ++i) {
     if (grouped[i]) continue;
     const Plane& plane = table[between[i]].plane;
-    group.assign(1, &table[between[i]]);
+    group.assign(1, outline(table[between[i]]));
     for (size_t j = i + 1; j < between.size(); ++j) {
       const BlockerGeometry& b = table[between[j]];
       bool on = !grouped[j];
@@ -76,9 +77,9 @@ TubeVerdict classifyTube(const Tube& tube, std::span<const uint32_t> blockers,
         on = std::abs(plane.distance(b.vertices[k])) <= eps;
       if (!on) continue;
       grouped[j] = true;
-      group.push_back(&b);
+      group.push_back(outline(b));
     }
-    if (group.size() >= 2 && coplanarBlockersCover(tube, group, tol)) {
+    if (group.size() >= 2 && coplanarOutlinesCover(tube.source(), tube.receiver(), group, eps)) {
       t.status = VisibilityStatus::Invisible;
       t.proof = between[i];
       t.blockers.clear();

@@ -142,6 +142,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"partial_percent_of_listed", listed ? 100.0 * double(s.pairsPartial) / double(listed) : 0.0},
       {"same_cell_shortcuts", s.sameCellShortcuts},
       {"pairs_hidden_by_one_blocker", s.pairsHiddenByOne},
+      {"pairs_hidden_by_coplanar_blockers", s.pairsHiddenByWall},
       {"thin_wall_slivers", s.thinWallSlivers},
       {"pieces_across_openings", s.acrossPortalPieces},
       {"cell_pairs_visible", s.cellPairsVisible},

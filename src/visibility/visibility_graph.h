@@ -69,6 +69,9 @@ struct VisibilityStats {
   /// Pairs the searches kept that one of their blockers hides whole (single_occluder.h):
   /// dropped, so INVISIBLE.
   uint64_t pairsHiddenByOne = 0;
+  /// Pairs the searches kept that blockers lying in one plane hide together (a wall of several
+  /// patches: geometry/coplanar_cover.h): dropped, so INVISIBLE.
+  uint64_t pairsHiddenByWall = 0;
   /// Pieces of patches placed in a cell across a one-sided wall they end against (patch_search.cpp:
   /// rays may cross such a wall within the contact tolerance of their start).
   uint64_t thinWallSlivers = 0;

@@ -304,7 +304,7 @@ TEST(LinespaceTubeTest, SmallBlockerInsideTheTubeIsAPuntThatStabbingKeeps) {
 TEST(LinespaceTubeTest, CoplanarPiecesOfAnOccluderOccludeJointly) {
   // The paper's Fig. 17 case: a wall made of several patches. Every random blocker that occludes
   // on its own is cut in two by a random plane through it; neither piece occludes alone, the two
-  // together must (coplanar_cover.h); with a gap cut out between them they must not, and
+  // together must (geometry/coplanar_cover.h); with a gap cut out between them they must not, and
   // sampling must usually find a free segment through the gap.
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(0, 1);

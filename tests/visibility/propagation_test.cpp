@@ -296,8 +296,62 @@ TEST(PropagationBudget, TheDefaultPatchBudgetFollowsThePatchCount) {
   m.height = 3;
   const Scene scene = generateMaze(m);
   const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene));
-  EXPECT_EQ(g.stats.patchBudget, std::max<uint64_t>(kMinPatchSequenceBudget,
-                                                    kPatchTestsInAll / scene.patches.size()));
+  EXPECT_EQ(g.stats.patchBudget,
+            std::max<uint64_t>(kMinPatchSequenceBudget, kPatchTestsInAll / scene.patches.size()));
+}
+
+TEST(PropagationBudget, ReceiversHiddenByAPlateOfTwoPiecesAreDroppedAndAGapKeepsThem) {
+  // The scene of ReceiversHiddenWholeBehindOnePlateAreDropped below, with the plate cut in two
+  // along x = 1. Worked by hand: segments from the source to ceiling column i (x in [0.2 i,
+  // 0.2 i + 0.2]) cross the plate's height at x in [0.45 + 0.1 i, 0.65 + 0.1 i]. For the inner
+  // columns 1-3 and 6-8 that lies in one half, which hides their 48 inner patches alone; for
+  // columns 4 and 5 it spans x = 1, so only the two halves together hide their 16 inner patches
+  // (BlockerDetection::hiddenByWall). With a gap of 0.02 between the halves, segments through it
+  // reach columns 4 and 5, whose patches must then stay listed.
+  for (const double gap : {0.0, 0.02}) {
+    SCOPED_TRACE(gap);
+    Scene scene;
+    SceneBuilder b(scene, Tolerance{10});
+    const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+    b.addAxisRect(2, true, {0.9, 0.9, 0}, {1.1, 1.1, 0}, m);           // 0: the source
+    b.addAxisRect(2, false, {0.5, 0.5, 1}, {1 - gap / 2, 1.5, 1}, m);  // 1: the plate's halves
+    b.addAxisRect(2, false, {1 + gap / 2, 0.5, 1}, {1.5, 1.5, 1}, m);  // 2
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j)  // 3..102: the ceiling, facing down
+        b.addAxisRect(2, false, {0.2 * i, 0.2 * j, 2}, {0.2 * (i + 1), 0.2 * (j + 1), 2}, m);
+    PropagationOptions tight;
+    tight.cellSequenceBudget = tight.patchSequenceBudget = 1;
+    const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene), tight);
+    const auto index = indexOf(g);
+    for (int i = 0; i < 10; ++i)
+      for (int j = 0; j < 10; ++j) {
+        const uint32_t r = uint32_t(3 + 10 * i + j);
+        const bool inner = i > 0 && i < 9 && j > 0 && j < 9;
+        const bool throughGap = gap > 0 && (i == 4 || i == 5);
+        EXPECT_EQ(index.count({0, r}), inner && !throughGap ? 0u : 1u)
+            << "ceiling patch " << i << ", " << j;
+      }
+    // The first inner patch a half hides may be found by the wall test (the wall then hides the
+    // next ones first), so only the sum and the wall's share are fixed.
+    EXPECT_EQ(g.stats.pairsHiddenByOne + g.stats.pairsHiddenByWall, gap > 0 ? 48u : 64u);
+    if (gap > 0) {
+      EXPECT_EQ(g.stats.pairsHiddenByWall, 0u);
+    } else {
+      EXPECT_GE(g.stats.pairsHiddenByWall, 16u);
+    }
+    // The ray oracle agrees: segments to a dropped patch all meet the plate first.
+    std::mt19937 rng(3);
+    for (uint32_t r = 3; r < 103; ++r) {
+      if (index.count({0, r})) continue;
+      for (int k = 0; k < 200; ++k) {
+        const Vec3 p = randomPointOn(scene.patches[0].polygon, rng);
+        const Vec3 q = randomPointOn(scene.patches[r].polygon, rng);
+        const auto hit = firstHit(scene, p, q - p, 1e-9, 1 - 1e-9, 0);
+        ASSERT_TRUE(hit && (hit->patch == 1 || hit->patch == 2))
+            << "a free segment to dropped patch " << r;
+      }
+    }
+  }
 }
 
 TEST(PropagationBudget, ReceiversHiddenWholeBehindOnePlateAreDropped) {

@@ -1,5 +1,5 @@
-// Coverage of a tube's crossing hull by coplanar blockers. Beyond paper §6.2 (Fig. 17).
-#include "linespace/coplanar_cover.h"
+// Coverage of the crossing hull of two polygons by coplanar blockers. Beyond paper §6.2 (Fig. 17).
+#include "geometry/coplanar_cover.h"
 
 #include <algorithm>
 #include <cmath>
@@ -74,29 +74,52 @@ Poly2 clipHalfplane(const Poly2& in, const P2& a, const P2& b, bool left) {
 
 }  // namespace
 
-bool coplanarBlockersCover(const Tube& tube, std::span<const BlockerGeometry* const> blockers,
-                           const Tolerance& tol) {
+bool coplanarOutlinesCover(const ConvexPolygon& s, const ConvexPolygon& r,
+                           std::span<const PlanarOutline> blockers, double eps) {
   if (blockers.empty()) return false;
-  const double eps = tol.length();
-  const Plane& plane = blockers.front()->plane;
-  for (const BlockerGeometry* b : blockers)
-    for (const Vec3& v : b->vertices)
+  const Plane& plane = *blockers.front().plane;
+  for (const PlanarOutline& b : blockers)
+    for (const Vec3& v : b.vertices)
       if (std::abs(plane.distance(v)) > eps) return false;
+  // Most groups fail here, cheaply and before anything is allocated (the blocker stage of `vis`
+  // asks about every pair with two blockers in one plane between its ends): a point where a
+  // segment between vertices of S and R crosses the plane, farther than eps outside every
+  // blocker. (Inside: left of every edge seen from the blocker's own front, or within eps.)
+  for (const Vec3& sv : s.vertices) {
+    const double ds = plane.distance(sv);
+    for (const Vec3& rv : r.vertices) {
+      const double dr = plane.distance(rv);
+      if (ds == dr) return false;  // both on the plane: degenerate, no conclusion
+      const Vec3 x = sv + (rv - sv) * (ds / (ds - dr));
+      bool inSome = false;
+      for (const PlanarOutline& b : blockers) {
+        const size_t m = b.vertices.size();
+        inSome = true;
+        for (size_t k = 0; k < m && inSome; ++k) {
+          const Vec3& a = b.vertices[k];
+          const Vec3 edge = b.vertices[k + 1 < m ? k + 1 : 0] - a;
+          inSome = dot(cross(b.plane->normal, edge), x - a) >= -eps * length(edge);
+        }
+        if (inSome) break;
+      }
+      if (!inSome) return false;
+    }
+  }
+
   // A 2D frame of the plane.
   const Vec3 n = plane.normal;
   const Vec3 u = normalize(std::abs(n.x) < 0.9 ? cross(n, {1, 0, 0}) : cross(n, {0, 1, 0}));
   const Vec3 w = cross(n, u);  // (u, w, n) right-handed: counter-clockwise seen from the front
-  const Vec3 origin = blockers.front()->vertices.front();
+  const Vec3 origin = blockers.front().vertices.front();
   auto to2 = [&](const Vec3& p) { return P2{dot(p - origin, u), dot(p - origin, w)}; };
 
-  // Crossing points of the extremal lines.
+  // Where the segments between the vertices of S and of R cross the plane.
   std::vector<P2> crossings;
-  for (const Vec3& s : tube.source().vertices) {
-    const double ds = plane.distance(s);
-    for (const Vec3& r : tube.receiver().vertices) {
-      const double dr = plane.distance(r);
-      if (ds == dr) return false;  // both on the plane: degenerate, no conclusion
-      crossings.push_back(to2(s + (r - s) * (ds / (ds - dr))));
+  for (const Vec3& sv : s.vertices) {
+    const double ds = plane.distance(sv);
+    for (const Vec3& rv : r.vertices) {
+      const double dr = plane.distance(rv);
+      crossings.push_back(to2(sv + (rv - sv) * (ds / (ds - dr))));
     }
   }
   const Poly2 hull = convexHull(crossings);
@@ -120,10 +143,10 @@ bool coplanarBlockersCover(const Tube& tube, std::span<const BlockerGeometry* co
     return b;
   };
   std::vector<Poly2> remaining{hull}, next;
-  for (const BlockerGeometry* b : blockers) {
-    Poly2 poly;
-    for (const Vec3& v : b->vertices) poly.push_back(to2(v));
-    if (dot(b->plane.normal, n) < 0) std::reverse(poly.begin(), poly.end());
+  for (const PlanarOutline& b : blockers) {
+    Poly2 poly;  // in the frame, counter-clockwise there
+    for (const Vec3& v : b.vertices) poly.push_back(to2(v));
+    if (dot(b.plane->normal, n) < 0) std::reverse(poly.begin(), poly.end());
     const Box2 blockerBox = boxOf(poly);
     next.clear();
     for (Poly2& piece : remaining) {
