@@ -300,35 +300,61 @@ TEST(PropagationBudget, TheDefaultPatchBudgetFollowsThePatchCount) {
             std::max<uint64_t>(kMinPatchSequenceBudget, kPatchTestsInAll / scene.patches.size()));
 }
 
+/// The scene of the plate tests: a 0.2-wide source on the floor facing up (patch 0), the plate's
+/// pieces at half height facing down (patches 1..k, given as (low, high) corners at z = 1), the
+/// ceiling at z = 2 cut into 10 x 10 patches facing down (k + 1 + 10 i + j for column i, row j).
+/// The searches run with budgets of one test, so they answer with every patch they might reach
+/// and the blocker stage decides which ceiling patches are hidden. Returns the graph.
+VisibilityGraph plateVisibility(Scene& scene, std::initializer_list<std::pair<Vec3, Vec3>> plate) {
+  SceneBuilder b(scene, Tolerance{10});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  b.addAxisRect(2, true, {0.9, 0.9, 0}, {1.1, 1.1, 0}, m);
+  for (const auto& [lo, hi] : plate) b.addAxisRect(2, false, lo, hi, m);
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      b.addAxisRect(2, false, {0.2 * i, 0.2 * j, 2}, {0.2 * (i + 1), 0.2 * (j + 1), 2}, m);
+  PropagationOptions tight;
+  tight.cellSequenceBudget = tight.patchSequenceBudget = 1;
+  return computeVisibility(scene, buildSubdivision(scene), tight);
+}
+
+/// The ray oracle on plateVisibility's answer: 200 random segments from the source to each
+/// unlisted ceiling patch all meet a piece of the plate first.
+void expectDroppedCeilingPatchesBehindThePlate(const Scene& scene, const VisibilityGraph& g,
+                                               uint32_t pieces) {
+  const auto index = indexOf(g);
+  std::mt19937 rng(3);
+  for (uint32_t r = 1 + pieces; r < scene.patches.size(); ++r) {
+    if (index.count({0, r})) continue;
+    for (int k = 0; k < 200; ++k) {
+      const Vec3 p = randomPointOn(scene.patches[0].polygon, rng);
+      const Vec3 q = randomPointOn(scene.patches[r].polygon, rng);
+      const auto hit = firstHit(scene, p, q - p, 1e-9, 1 - 1e-9, 0);
+      ASSERT_TRUE(hit && hit->patch >= 1 && hit->patch <= pieces)
+          << "a free segment to dropped patch " << r;
+    }
+  }
+}
+
 TEST(PropagationBudget, ReceiversHiddenByAPlateOfTwoPiecesAreDroppedAndAGapKeepsThem) {
-  // The scene of ReceiversHiddenWholeBehindOnePlateAreDropped below, with the plate cut in two
-  // along x = 1. Worked by hand: segments from the source to ceiling column i (x in [0.2 i,
-  // 0.2 i + 0.2]) cross the plate's height at x in [0.45 + 0.1 i, 0.65 + 0.1 i]. For the inner
-  // columns 1-3 and 6-8 that lies in one half, which hides their 48 inner patches alone; for
-  // columns 4 and 5 it spans x = 1, so only the two halves together hide their 16 inner patches
+  // The plate of ReceiversHiddenWholeBehindOnePlateAreDropped below, cut in two along x = 1.
+  // Worked by hand: segments from the source to ceiling column i (x in [0.2 i, 0.2 i + 0.2])
+  // cross the plate's height at x in [0.45 + 0.1 i, 0.65 + 0.1 i]. For the inner columns 1-3 and
+  // 6-8 that lies in one half, which hides their 48 inner patches alone; for columns 4 and 5 it
+  // spans x = 1, so only the two halves together hide their 16 inner patches
   // (BlockerDetection::hiddenByWall). With a gap of 0.02 between the halves, segments through it
   // reach columns 4 and 5, whose patches must then stay listed.
   for (const double gap : {0.0, 0.02}) {
     SCOPED_TRACE(gap);
     Scene scene;
-    SceneBuilder b(scene, Tolerance{10});
-    const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
-    b.addAxisRect(2, true, {0.9, 0.9, 0}, {1.1, 1.1, 0}, m);           // 0: the source
-    b.addAxisRect(2, false, {0.5, 0.5, 1}, {1 - gap / 2, 1.5, 1}, m);  // 1: the plate's halves
-    b.addAxisRect(2, false, {1 + gap / 2, 0.5, 1}, {1.5, 1.5, 1}, m);  // 2
-    for (int i = 0; i < 10; ++i)
-      for (int j = 0; j < 10; ++j)  // 3..102: the ceiling, facing down
-        b.addAxisRect(2, false, {0.2 * i, 0.2 * j, 2}, {0.2 * (i + 1), 0.2 * (j + 1), 2}, m);
-    PropagationOptions tight;
-    tight.cellSequenceBudget = tight.patchSequenceBudget = 1;
-    const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene), tight);
+    const VisibilityGraph g = plateVisibility(
+        scene, {{{0.5, 0.5, 1}, {1 - gap / 2, 1.5, 1}}, {{1 + gap / 2, 0.5, 1}, {1.5, 1.5, 1}}});
     const auto index = indexOf(g);
     for (int i = 0; i < 10; ++i)
       for (int j = 0; j < 10; ++j) {
-        const uint32_t r = uint32_t(3 + 10 * i + j);
         const bool inner = i > 0 && i < 9 && j > 0 && j < 9;
         const bool throughGap = gap > 0 && (i == 4 || i == 5);
-        EXPECT_EQ(index.count({0, r}), inner && !throughGap ? 0u : 1u)
+        EXPECT_EQ(index.count({0, uint32_t(3 + 10 * i + j)}), inner && !throughGap ? 0u : 1u)
             << "ceiling patch " << i << ", " << j;
       }
     // The first inner patch a half hides may be found by the wall test (the wall then hides the
@@ -339,18 +365,7 @@ TEST(PropagationBudget, ReceiversHiddenByAPlateOfTwoPiecesAreDroppedAndAGapKeeps
     } else {
       EXPECT_GE(g.stats.pairsHiddenByWall, 16u);
     }
-    // The ray oracle agrees: segments to a dropped patch all meet the plate first.
-    std::mt19937 rng(3);
-    for (uint32_t r = 3; r < 103; ++r) {
-      if (index.count({0, r})) continue;
-      for (int k = 0; k < 200; ++k) {
-        const Vec3 p = randomPointOn(scene.patches[0].polygon, rng);
-        const Vec3 q = randomPointOn(scene.patches[r].polygon, rng);
-        const auto hit = firstHit(scene, p, q - p, 1e-9, 1 - 1e-9, 0);
-        ASSERT_TRUE(hit && (hit->patch == 1 || hit->patch == 2))
-            << "a free segment to dropped patch " << r;
-      }
-    }
+    expectDroppedCeilingPatchesBehindThePlate(scene, g, 2);
   }
 }
 
@@ -359,39 +374,19 @@ TEST(PropagationBudget, ReceiversHiddenWholeBehindOnePlateAreDropped) {
   // patches. Worked by hand: every segment from the source to a ceiling point x crosses the
   // plate's height at (s + x) / 2, inside the plate for every s exactly when x lies in
   // [0.1, 1.9]^2: the 8 x 8 inner ceiling patches are hidden whole, the 36 around them are not.
-  // With budgets of one test the searches answer with every patch they might reach, so the
-  // blocker stage decides: the first hidden patch by its candidates, the next ones by the
-  // blocker that hid the last (BlockerDetection::hiddenByRecent).
+  // The first hidden patch is found by its candidates, the next ones by the blocker that hid the
+  // last (BlockerDetection::hiddenByRecent).
   Scene scene;
-  SceneBuilder b(scene, Tolerance{10});
-  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
-  b.addAxisRect(2, true, {0.9, 0.9, 0}, {1.1, 1.1, 0}, m);   // 0: the source, facing up
-  b.addAxisRect(2, false, {0.5, 0.5, 1}, {1.5, 1.5, 1}, m);  // 1: the plate, facing down
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j)  // 2..101: the ceiling, facing down
-      b.addAxisRect(2, false, {0.2 * i, 0.2 * j, 2}, {0.2 * (i + 1), 0.2 * (j + 1), 2}, m);
-  PropagationOptions tight;
-  tight.cellSequenceBudget = tight.patchSequenceBudget = 1;
-  const VisibilityGraph g = computeVisibility(scene, buildSubdivision(scene), tight);
+  const VisibilityGraph g = plateVisibility(scene, {{{0.5, 0.5, 1}, {1.5, 1.5, 1}}});
   const auto index = indexOf(g);
   for (int i = 0; i < 10; ++i)
     for (int j = 0; j < 10; ++j) {
-      const uint32_t r = uint32_t(2 + 10 * i + j);
       const bool inner = i > 0 && i < 9 && j > 0 && j < 9;
-      EXPECT_EQ(index.count({0, r}), inner ? 0u : 1u) << "ceiling patch " << i << ", " << j;
+      EXPECT_EQ(index.count({0, uint32_t(2 + 10 * i + j)}), inner ? 0u : 1u)
+          << "ceiling patch " << i << ", " << j;
     }
   EXPECT_GE(g.stats.pairsHiddenByOne, 64u);
-  // The ray oracle agrees: segments to a dropped patch all meet the plate first.
-  std::mt19937 rng(3);
-  for (uint32_t r = 2; r < 102; ++r) {
-    if (index.count({0, r})) continue;
-    for (int k = 0; k < 200; ++k) {
-      const Vec3 p = randomPointOn(scene.patches[0].polygon, rng);
-      const Vec3 q = randomPointOn(scene.patches[r].polygon, rng);
-      const auto hit = firstHit(scene, p, q - p, 1e-9, 1 - 1e-9, 0);
-      ASSERT_TRUE(hit && hit->patch == 1) << "a free segment to dropped patch " << r;
-    }
-  }
+  expectDroppedCeilingPatchesBehindThePlate(scene, g, 1);
 }
 
 TEST(Propagation, SameOutputOnOneAndTwoThreads) {
