@@ -385,8 +385,8 @@ class BlockerDetection {
   /// (coplanarOutlinesCover): a wall cut into pieces, by brush faces or by the BSP, that no
   /// single piece covers. Every one lies between S and T beyond the contact margin, so no
   /// segment the contract's contact rule lets through is lost. Exact up to the tolerance, as
-  /// hidesWhole is: the pair is INVISIBLE. (retrojam1: 108,052 of 762,925 PARTIAL pairs with two
-  /// or more blockers.)
+  /// hidesWhole is: the pair is INVISIBLE. (retrojam1: 852,896 pairs listed without this test,
+  /// 742,871 with it; excess 51.0 -> 44.7 %.)
   bool hiddenByWall(BlockerWorker& w, uint32_t s, uint32_t t) const {
     const std::vector<uint32_t>& between = w.between;
     if (between.size() < 2) return false;
