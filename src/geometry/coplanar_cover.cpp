@@ -171,4 +171,29 @@ bool coplanarOutlinesCover(const ConvexPolygon& s, const ConvexPolygon& r,
   return false;
 }
 
+bool someCoplanarGroupCovers(const ConvexPolygon& s, const ConvexPolygon& r,
+                             std::span<const PlanarOutline> outlines, double eps,
+                             CoplanarGroups& scratch) {
+  if (outlines.size() < 2) return false;
+  scratch.grouped.assign(outlines.size(), 0);
+  for (size_t i = 0; i + 1 < outlines.size(); ++i) {
+    if (scratch.grouped[i]) continue;
+    const Plane& plane = *outlines[i].plane;
+    scratch.group.assign(1, outlines[i]);
+    scratch.members.assign(1, uint32_t(i));
+    for (size_t j = i + 1; j < outlines.size(); ++j) {
+      if (scratch.grouped[j]) continue;
+      bool on = true;
+      for (size_t k = 0; k < outlines[j].vertices.size() && on; ++k)
+        on = std::abs(plane.distance(outlines[j].vertices[k])) <= eps;
+      if (!on) continue;
+      scratch.grouped[j] = 1;
+      scratch.group.push_back(outlines[j]);
+      scratch.members.push_back(uint32_t(j));
+    }
+    if (scratch.group.size() >= 2 && coplanarOutlinesCover(s, r, scratch.group, eps)) return true;
+  }
+  return false;
+}
+
 }  // namespace gv

@@ -5,7 +5,9 @@
 // linespace tube classification (linespace/tube_classification.h).
 #pragma once
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "geometry/convex_polygon.h"
 
@@ -33,5 +35,20 @@ struct PlanarOutline {
 /// could be a wedge thinner than `eps`: false is then the looser answer, never a wrong one).
 bool coplanarOutlinesCover(const ConvexPolygon& s, const ConvexPolygon& r,
                            std::span<const PlanarOutline> blockers, double eps);
+
+/// Scratch memory of someCoplanarGroupCovers, kept by callers that ask many times.
+struct CoplanarGroups {
+  std::vector<uint8_t> grouped;
+  std::vector<PlanarOutline> group;
+  /// After a true answer: the covering group, as indices into `outlines`, its first member first.
+  std::vector<uint32_t> members;
+};
+
+/// Whether a group of two or more of `outlines` lying in one plane hides R from S together
+/// (coplanarOutlinesCover). Each outline must have S and R strictly on opposite sides of its
+/// plane. A group is an outline and the later ones with every vertex within `eps` of its plane.
+bool someCoplanarGroupCovers(const ConvexPolygon& s, const ConvexPolygon& r,
+                             std::span<const PlanarOutline> outlines, double eps,
+                             CoplanarGroups& scratch);
 
 }  // namespace gv

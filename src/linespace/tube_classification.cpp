@@ -61,31 +61,16 @@ TubeVerdict classifyTube(const Tube& tube, std::span<const uint32_t> blockers,
   }
   t.status = t.blockers.empty() ? VisibilityStatus::Visible : VisibilityStatus::Partial;
   if (!options.coplanarCover || between.size() < 2) return t;
-  // Coplanar groups: the blockers whose vertices all lie on the plane of the group's first.
-  const double eps = tol.length();
-  std::vector<bool> grouped(between.size(), false);
-  std::vector<PlanarOutline> group;
-  const auto outline = [](const BlockerGeometry& b) { return PlanarOutline{&b.plane, b.vertices}; };
-  for (size_t i = 0; i < between.size(); ++i) {
-    if (grouped[i]) continue;
-    const Plane& plane = table[between[i]].plane;
-    group.assign(1, outline(table[between[i]]));
-    for (size_t j = i + 1; j < between.size(); ++j) {
-      const BlockerGeometry& b = table[between[j]];
-      bool on = !grouped[j];
-      for (size_t k = 0; k < b.vertices.size() && on; ++k)
-        on = std::abs(plane.distance(b.vertices[k])) <= eps;
-      if (!on) continue;
-      grouped[j] = true;
-      group.push_back(outline(b));
-    }
-    if (group.size() >= 2 && coplanarOutlinesCover(tube.source(), tube.receiver(), group, eps)) {
-      t.status = VisibilityStatus::Invisible;
-      t.proof = between[i];
-      t.blockers.clear();
-      ++t.counts.coplanarCovers;
-      return t;
-    }
+  // Coplanar groups of the between blockers, each tested as one wall.
+  std::vector<PlanarOutline> outlines;
+  outlines.reserve(between.size());
+  for (const uint32_t id : between) outlines.push_back({&table[id].plane, table[id].vertices});
+  CoplanarGroups groups;
+  if (someCoplanarGroupCovers(tube.source(), tube.receiver(), outlines, tol.length(), groups)) {
+    t.status = VisibilityStatus::Invisible;
+    t.proof = between[groups.members.front()];
+    t.blockers.clear();
+    ++t.counts.coplanarCovers;
   }
   return t;
 }

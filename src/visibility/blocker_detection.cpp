@@ -113,15 +113,15 @@ struct BlockerWorker {
   std::vector<uint32_t> sideSource;
   std::vector<int8_t> sideOfSource;
   std::vector<uint32_t> hiders;  ///< the blockers that hid the source's last pairs, latest first
-  /// The current pair's blockers with S and T strictly on opposite sides of their plane, and
-  /// scratch for the coplanar groups among them (BlockerDetection::hiddenByWall).
+  /// The current pair's blockers with S and T strictly on opposite sides of their plane (ids,
+  /// and their outlines), and scratch for the coplanar groups among them (hiddenByWall).
   std::vector<uint32_t> between;
-  std::vector<uint8_t> grouped;
-  std::vector<PlanarOutline> wall;
-  std::vector<uint32_t> wallIds;  ///< the patches of `wall`
+  std::vector<PlanarOutline> betweenOutlines;
+  CoplanarGroups groups;
   /// The blockers that hid the source's last pair hidden by a wall (hiddenByWall), tried on its
-  /// next pairs as `hiders` are.
+  /// next pairs as `hiders` are, and room for their outlines.
   std::vector<uint32_t> recentWall;
+  std::vector<PlanarOutline> wall;
 };
 
 /// What an entry (s, t) of seen(s) gives.
@@ -166,8 +166,6 @@ class BlockerDetection {
     normalLengths_.resize(n);
     slabs_.resize(n);
     for (size_t p = 0; p < n; ++p) slabs_[p] = occluderSlab(scene.patches[p].polygon);
-    planeKeys_.resize(n);
-    for (size_t p = 0; p < n; ++p) planeKeys_[p] = planeKey(scene.patches[p].polygon.plane);
     for (size_t p = 0; p < n; ++p) {
       normals_[p] = scene.patches[p].polygon.plane.normal;
       normalLengths_[p] = length(normals_[p]);
@@ -363,58 +361,19 @@ class BlockerDetection {
     return ss != 0 && sideOfSlab(blocker, slabs_[c], scene_.patches[t].polygon, margin) == -ss;
   }
 
-  /// A key equal for patches in one plane (either facing), almost always: the unit normal and the
-  /// offset rounded (normals to 1e-6, offsets to 64 length tolerances), with one sign. Patches
-  /// whose rounding falls on two sides of a step get two keys; their wall is then tested in two
-  /// groups, which can only find fewer pairs hidden (hiddenByWall checks the vertices anyway).
-  uint64_t planeKey(const Plane& plane) const {
-    Vec3 nn = plane.normal;
-    double d = plane.offset;
-    const double lead = std::abs(nn.x) >= std::abs(nn.y) && std::abs(nn.x) >= std::abs(nn.z)
-                            ? nn.x
-                            : (std::abs(nn.y) >= std::abs(nn.z) ? nn.y : nn.z);
-    if (lead < 0) nn = -nn, d = -d;
-    uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (const double q : {nn.x * 1e6, nn.y * 1e6, nn.z * 1e6, d / (64 * tol_.length())}) {
-      h ^= uint64_t(std::llround(q)) + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
-    }
-    return h;
-  }
-
   /// Whether blockers of w.between lying in one plane hide T from S together
-  /// (coplanarOutlinesCover): a wall cut into pieces, by brush faces or by the BSP, that no
+  /// (someCoplanarGroupCovers): a wall cut into pieces, by brush faces or by the BSP, that no
   /// single piece covers. Every one lies between S and T beyond the contact margin, so no
   /// segment the contract's contact rule lets through is lost. Exact up to the tolerance, as
   /// hidesWhole is: the pair is INVISIBLE. (retrojam1: 852,896 pairs listed without this test,
-  /// 742,871 with it; excess 51.0 -> 44.7 %.)
+  /// 742,871 with it; excess 51.0 -> 44.7 %.) The wall found becomes w.recentWall.
   bool hiddenByWall(BlockerWorker& w, uint32_t s, uint32_t t) const {
-    const std::vector<uint32_t>& between = w.between;
-    if (between.size() < 2) return false;
-    const double eps = tol_.length();
-    w.grouped.assign(between.size(), 0);
-    for (size_t i = 0; i + 1 < between.size(); ++i) {
-      if (w.grouped[i]) continue;
-      const ConvexPolygon& first = scene_.patches[between[i]].polygon;
-      w.wall.assign(1, PlanarOutline{&first.plane, first.vertices});
-      w.wallIds.assign(1, between[i]);
-      for (size_t j = i + 1; j < between.size(); ++j) {
-        if (w.grouped[j] || planeKeys_[between[j]] != planeKeys_[between[i]]) continue;
-        const ConvexPolygon& b = scene_.patches[between[j]].polygon;
-        bool on = true;
-        for (size_t k = 0; k < b.vertices.size() && on; ++k)
-          on = std::abs(first.plane.distance(b.vertices[k])) <= eps;
-        if (!on) continue;
-        w.grouped[j] = 1;
-        w.wall.push_back(PlanarOutline{&b.plane, b.vertices});
-        w.wallIds.push_back(between[j]);
-      }
-      if (w.wall.size() >= 2 && coplanarOutlinesCover(scene_.patches[s].polygon,
-                                                      scene_.patches[t].polygon, w.wall, eps)) {
-        w.recentWall.swap(w.wallIds);
-        return true;
-      }
-    }
-    return false;
+    if (!someCoplanarGroupCovers(scene_.patches[s].polygon, scene_.patches[t].polygon,
+                                 w.betweenOutlines, tol_.length(), w.groups))
+      return false;
+    w.recentWall.clear();
+    for (uint32_t k : w.groups.members) w.recentWall.push_back(w.between[k]);
+    return true;
   }
 
   /// Whether the wall that hid the source's last pair hidden by a wall hides (s, t) too: the
@@ -476,6 +435,7 @@ class BlockerDetection {
       for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
     auto fromT = b.begin();  // candidates rise: each search starts where the last ended
     w.between.clear();
+    w.betweenOutlines.clear();
     for (uint32_t c : candidates) {
       if (c == s || c == t) continue;
       if (!w.seen[c]) {  // not seen from S (nor, with flags, from T)
@@ -497,6 +457,8 @@ class BlockerDetection {
             break;
           }
           w.between.push_back(c);
+          w.betweenOutlines.push_back(
+              {&scene_.patches[c].polygon.plane, scene_.patches[c].polygon.vertices});
         }
         lists.addBlocker(c);
       }
@@ -518,7 +480,6 @@ class BlockerDetection {
   std::vector<Vec3> normals_;
   std::vector<double> normalLengths_;
   std::vector<OccluderSlab> slabs_;  ///< per patch, as a blocker that may hide a pair whole
-  std::vector<uint64_t> planeKeys_;  ///< per patch, planeKey of its plane
   std::vector<uint64_t> seenStart_;
   size_t seenWords_ = 0;
   /// Row p (seenWords_ words): the patches of seen(p); empty above kMaxSeenBitsPatches.
