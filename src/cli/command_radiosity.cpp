@@ -26,6 +26,7 @@
 #include "util/peak_memory.h"
 #include "util/progress_bar.h"
 #include "util/timing.h"
+#include "visibility/patch_cell_reach.h"
 #include "visibility/propagation.h"
 
 namespace gv::cli {
@@ -43,6 +44,7 @@ Action addRadiosityCommand(CLI::App& app) {
     RadiosityOptions options;
     std::string camera, imageSize = "800x600";
     bool noPictures = false, flat = false, noContactSplit = false, keepHidden = false;
+    bool noCellCulling = false, sceneThreshold = false;
     BspOptions bsp;  // blockers mode: the subdivision its visibility graph is computed on
   };
   auto s = std::make_shared<State>();
@@ -62,11 +64,21 @@ Action addRadiosityCommand(CLI::App& app) {
                   "refinement, rays only for PARTIAL links and only against their blockers "
                   "(paper §6)")
       ->check(CLI::IsMember({"rays", "shaft", "blockers"}));
+  cmd->add_flag("--no-cell-culling", s->noCellCulling,
+                "rays mode: link every pair of patches, instead of only the pairs whose cells may "
+                "see each other (the BSP and cell-to-cell stage of `vis`, conservative; no link "
+                "or ray between rooms that cannot see each other)");
+  cmd->add_flag("--scene-threshold", s->sceneThreshold,
+                "Judge every link against the whole scene's emitted power (HSA91's BF rule) "
+                "instead of against the power whose cells may see its ends' cells (rays mode "
+                "with cell culling): in a building of many rooms, each room is otherwise refined "
+                "as if it were the whole scene");
   cmd->add_flag("--no-contact-split", s->noContactSplit,
                 "Keep the patches whole instead of cutting them along the outlines of the patches "
                 "resting on them or hanging just in front (scene/contact_split.h)");
   auto* coverage = cmd->add_option("--min-coverage", s->bsp.minCoverage,
-                                   "blockers mode: BSP stop rule (see `globalvis cells --help`); "
+                                   "blockers mode and rays mode's cell culling: BSP stop rule (see "
+                                   "`globalvis cells --help`); "
                                    "default: chosen as `vis` chooses it")
                        ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--rays", s->rays, "Visibility rays per link")->check(CLI::Range(1, 4096));
@@ -172,13 +184,19 @@ Action addRadiosityCommand(CLI::App& app) {
     std::unique_ptr<LinkVisibility> visibility;
     VisibilityGraph graph;
     double visibilitySeconds = 0;
-    if (s->visibility == "blockers") {
-      const auto t0 = Clock::now();
+    std::unique_ptr<PatchCellReach> cellReach;
+    // The cells `vis` would use, with progress (blockers mode and rays mode's cell culling).
+    auto subdivide = [&] {
       ProgressBar bspBar("BSP", progress);
       if (progress) s->bsp.progress = [&bspBar](double f) { bspBar.update(f); };
-      const Subdivision sub = coverage->count() > 0 ? buildSubdivision(scene, s->bsp)
-                                                    : buildVisibilitySubdivision(scene, s->bsp);
+      Subdivision sub = coverage->count() > 0 ? buildSubdivision(scene, s->bsp)
+                                              : buildVisibilitySubdivision(scene, s->bsp);
       bspBar.finish();
+      return sub;
+    };
+    if (s->visibility == "blockers") {
+      const auto t0 = Clock::now();
+      const Subdivision sub = subdivide();
       ProgressBar cellBar("visibility (per source cell)", progress);
       ProgressBar visBar("visibility (per source patch)", progress);
       PropagationOptions propagation;
@@ -198,8 +216,25 @@ Action addRadiosityCommand(CLI::App& app) {
       visibility = std::make_unique<ShaftVisibility>(scene, s->rays);
     } else {
       const auto t0 = Clock::now();
+      if (!s->noCellCulling) {
+        const Subdivision sub = subdivide();
+        ProgressBar cellBar("cell-to-cell visibility", progress);
+        PropagationOptions propagation;
+        propagation.threads = s->options.threads;
+        propagation.cellProgress = cellBar.callback();
+        cellReach = std::make_unique<PatchCellReach>(scene, sub, propagation);
+        cellBar.finish();
+        if (!s->sceneThreshold && cellReach->known()) {
+          std::vector<double> emitted;
+          emitted.reserve(scene.patches.size());
+          for (const Patch& p : scene.patches)
+            emitted.push_back(p.polygon.area() *
+                              scene.materials.at(p.material).emission.maxChannel());
+          s->options.thresholdPower = cellReach->powerInView(emitted);
+        }
+      }
       bvh = std::make_unique<EmbreeScene>(scene);
-      visibility = std::make_unique<RayVisibility>(scene, *bvh, s->rays);
+      visibility = std::make_unique<RayVisibility>(scene, *bvh, s->rays, cellReach.get());
       visibilitySeconds = secondsSince(t0);
     }
     const RadiosityResult result = solveRadiosity(scene, *visibility, s->options);
@@ -222,6 +257,18 @@ Action addRadiosityCommand(CLI::App& app) {
     if (const auto* blockers = dynamic_cast<const BlockerVisibility*>(visibility.get())) {
       stats["linespace"] = blockers->statsJson();
       stats["linespace"]["visibility_graph_seconds"] = visibilitySeconds;
+    }
+    if (cellReach) {
+      const VisibilityStats& cs = cellReach->stats();
+      stats["cell_culling"] = {{"known", cellReach->known()},
+                               {"cells", cs.cells},
+                               {"portals", cs.portals},
+                               {"cell_pairs_visible", cs.cellPairsVisible},
+                               {"cell_searches_over_budget", cs.cellSearchesOverBudget},
+                               {"unplaced_patches", cellReach->unplacedPatches()},
+                               {"candidate_pairs", result.stats.candidatePairs},
+                               {"threshold_per_room", !s->options.thresholdPower.empty()},
+                               {"seconds", cs.seconds}};
     }
     stats["contact_split"] = {{"enabled", !s->noContactSplit},
                               {"patches_split", scene.report.splitAtContacts},
@@ -253,6 +300,20 @@ Action addRadiosityCommand(CLI::App& app) {
           "clusters: {} links between clusters of patches, {} clear samples; {} cluster pairs "
           "dropped with no candidate pair between them\n",
           st.rounds.back().clusterLinks, st.rounds.back().clusterTaps, invisible);
+    }
+    if (cellReach) {
+      const VisibilityStats& cs = cellReach->stats();
+      if (cellReach->known())
+        fmt::print(
+            "cell culling: {} cells, {} candidate pairs of patches ({:.1f} % of all), {:.2f} s\n",
+            cs.cells, st.candidatePairs,
+            st.patches > 1
+                ? 200.0 * double(st.candidatePairs) / (double(st.patches) * double(st.patches - 1))
+                : 0.0,
+            cs.seconds);
+      else
+        fmt::print("cell culling: {} cells, too many for the cell sets; every pair linked\n",
+                   cs.cells);
     }
     if (scene.report.splitAtContacts > 0)
       fmt::print("contact split: {} patches cut along the patches resting on them into {} pieces\n",

@@ -10,11 +10,18 @@
 
 namespace gv {
 
-CandidatePairs::CandidatePairs(LinkVisibility& visibility, const ClusterTree& clusters) {
+CandidatePairs::CandidatePairs(LinkVisibility& visibility, const ClusterTree& clusters)
+    : clusters_(&clusters) {
   const size_t n = clusters.order().size();
   if (visibility.everyPairIsCandidate()) {
     every_ = true;
     count_ = n < 2 ? 0 : n * (n - 1) / 2;
+    return;
+  }
+  if (const PatchCellReach* cells = visibility.candidateCells()) {
+    cells_ = cells;
+    count_ = cells->countPairs();
+    indexCells(clusters);
     return;
   }
   position_.assign(n, 0);
@@ -46,8 +53,69 @@ CandidatePairs::CandidatePairs(LinkVisibility& visibility, const ClusterTree& cl
               entries_.begin() + static_cast<long>(rowBegin_[i + 1]));
 }
 
+/// Clusters with more cells than this keep the union of their cells' reach as a set: a test
+/// against them is then one bit per cell of the other cluster.
+constexpr size_t kListedCells = 8;
+
+void CandidatePairs::indexCells(const ClusterTree& clusters) {
+  const size_t nodes = clusters.size();
+  std::vector<std::vector<uint32_t>> cellsOf(nodes);
+  clusterUnplaced_.assign(nodes, 0);
+  // Children have larger ids than their parent: bottom-up is descending ids.
+  for (size_t i = nodes; i-- > 0;) {
+    const Cluster& c = clusters[static_cast<uint32_t>(i)];
+    if (c.isLeaf()) {
+      const uint32_t p = clusters.patchesOf(static_cast<uint32_t>(i))[0];
+      cellsOf[i] = cells_->cellsOf(p);
+      clusterUnplaced_[i] = cellsOf[i].empty();
+      continue;
+    }
+    const std::vector<uint32_t>& l = cellsOf[c.left];
+    const std::vector<uint32_t>& r = cellsOf[c.right];
+    std::set_union(l.begin(), l.end(), r.begin(), r.end(), std::back_inserter(cellsOf[i]));
+    clusterUnplaced_[i] = clusterUnplaced_[c.left] | clusterUnplaced_[c.right];
+  }
+  clusterCellBegin_.assign(nodes + 1, 0);
+  for (size_t i = 0; i < nodes; ++i)
+    clusterCellBegin_[i + 1] = clusterCellBegin_[i] + cellsOf[i].size();
+  clusterCells_.reserve(clusterCellBegin_[nodes]);
+  clusterReachIndex_.assign(nodes, UINT32_MAX);
+  for (size_t i = 0; i < nodes; ++i) {
+    clusterCells_.insert(clusterCells_.end(), cellsOf[i].begin(), cellsOf[i].end());
+    if (cellsOf[i].size() <= kListedCells) continue;
+    clusterReachIndex_[i] = static_cast<uint32_t>(clusterReach_.size());
+    CellSet& reach = clusterReach_.emplace_back(cells_->cellCount());
+    for (uint32_t c : cellsOf[i]) reach.unite(cells_->reach(c));
+  }
+}
+
+bool CandidatePairs::cellsMaySee(uint32_t x, uint32_t y) const {
+  if (clusterUnplaced_[x] || clusterUnplaced_[y]) return true;
+  auto cellsOf = [&](uint32_t i) {
+    return std::span(clusterCells_)
+        .subspan(clusterCellBegin_[i], clusterCellBegin_[i + 1] - clusterCellBegin_[i]);
+  };
+  // x: the cluster with fewer cells. Reach is symmetric: a cell of x sees a cell of y exactly
+  // when it lies in the union of the reach of y's cells.
+  if (cellsOf(x).size() > cellsOf(y).size()) std::swap(x, y);
+  if (clusterReachIndex_[y] != UINT32_MAX) {
+    const CellSet& reachY = clusterReach_[clusterReachIndex_[y]];
+    for (uint32_t c : cellsOf(x))
+      if (reachY.contains(c)) return true;
+    return false;
+  }
+  for (uint32_t c : cellsOf(x))
+    for (uint32_t d : cellsOf(y))
+      if (cells_->reach(c).contains(d)) return true;
+  return false;
+}
+
 std::optional<TubeId> CandidatePairs::find(uint32_t a, uint32_t b) const {
   if (every_) return kNoTube;
+  if (cells_) {
+    if (cells_->maySee(a, b)) return kNoTube;
+    return std::nullopt;
+  }
   const uint32_t pa = position_[a], pb = position_[b];
   const std::span<const uint64_t> r = row(pa);
   const auto it = std::lower_bound(r.begin(), r.end(), uint64_t{pb} << 32);
@@ -55,8 +123,11 @@ std::optional<TubeId> CandidatePairs::find(uint32_t a, uint32_t b) const {
   return static_cast<TubeId>(*it & 0xffffffffu);
 }
 
-bool CandidatePairs::anyBetween(const Cluster& x, const Cluster& y) const {
+bool CandidatePairs::anyBetween(uint32_t xId, uint32_t yId) const {
   if (every_) return true;
+  if (cells_) return cellsMaySee(xId, yId);
+  const Cluster& x = (*clusters_)[xId];
+  const Cluster& y = (*clusters_)[yId];
   const Cluster& small = x.size() <= y.size() ? x : y;
   const Cluster& large = x.size() <= y.size() ? y : x;
   for (uint32_t i = small.begin; i < small.end; ++i) {
@@ -67,17 +138,22 @@ bool CandidatePairs::anyBetween(const Cluster& x, const Cluster& y) const {
   return false;
 }
 
-double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, double brightY) {
+ClusterTransfer clusterTransfer(const Cluster& x, const Cluster& y, double brightX,
+                                double brightY) {
   const double d = boxDistance(x.box, y.box);
-  if (!(d > 0)) return INFINITY;
+  if (!(d > 0)) return {INFINITY, INFINITY};
   const double piD2 = std::numbers::pi * d * d;
   // Only well-separated clusters: a sample carries up to A_Y / (π d²) / samplesPerPatch, and
   // close clusters (whose light may still be 0 in the first round) would hand single samples
   // form factors near or over 1, noise enough to make the solve diverge.
-  if (std::max(x.area, y.area) > kMaxClusterFormFactor * piD2) return INFINITY;
-  const double intoX = x.reflectance * x.area * brightY * y.area / piD2;
-  const double intoY = y.reflectance * y.area * brightX * x.area / piD2;
-  return std::max(intoX, intoY);
+  if (std::max(x.area, y.area) > kMaxClusterFormFactor * piD2) return {INFINITY, INFINITY};
+  return {x.reflectance * x.area * brightY * y.area / piD2,
+          y.reflectance * y.area * brightX * x.area / piD2};
+}
+
+double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, double brightY) {
+  const ClusterTransfer t = clusterTransfer(x, y, brightX, brightY);
+  return std::max(t.intoX, t.intoY);
 }
 
 SourcePicker::SourcePicker(const ClusterTree& clusters, std::span<const double> brightness)

@@ -47,24 +47,38 @@ class CandidatePairs {
   CandidatePairs(LinkVisibility& visibility, const ClusterTree& clusters);
   /// The pair's tube, or nullopt when (a, b) is not a candidate (no light passes). a != b.
   std::optional<TubeId> find(uint32_t a, uint32_t b) const;
-  /// Whether any patch of x and any patch of y form a candidate pair. None: the oracle proved
+  /// Whether any patch of clusters x and any patch of y (ids in the tree given) form a candidate
+  /// pair. None: the oracle proved
   /// every pair between them invisible (the visibility graph lists none), so no light passes
   /// between the two clusters. x and y disjoint.
-  bool anyBetween(const Cluster& x, const Cluster& y) const;
+  bool anyBetween(uint32_t x, uint32_t y) const;
   /// How many pairs are candidates.
   size_t count() const { return count_; }
 
  private:
+  /// Candidates by cells (LinkVisibility::candidateCells): per cluster, the cells its patches'
+  /// fronts look into, and for clusters with many, the union of those cells' reach.
+  void indexCells(const ClusterTree& clusters);
+  bool cellsMaySee(uint32_t x, uint32_t y) const;
+
   /// The entries of the row at tree position `row`: partner position << 32 | tube, sorted.
   std::span<const uint64_t> row(uint32_t row) const {
     return std::span(entries_).subspan(rowBegin_[row], rowBegin_[row + 1] - rowBegin_[row]);
   }
 
+  const ClusterTree* clusters_ = nullptr;  ///< the tree given (outlives this)
   bool every_ = false;
   size_t count_ = 0;
   std::vector<uint32_t> position_;  ///< per patch: its position in the tree's order
   std::vector<size_t> rowBegin_;    ///< per position (n + 1): its row's start in entries_
   std::vector<uint64_t> entries_;   ///< both directions of every pair
+
+  const PatchCellReach* cells_ = nullptr;    ///< set: candidates by cells, nothing listed
+  std::vector<size_t> clusterCellBegin_;     ///< per cluster (+ 1): its range in clusterCells_
+  std::vector<uint32_t> clusterCells_;       ///< per cluster, its cells, sorted
+  std::vector<uint8_t> clusterUnplaced_;     ///< per cluster: holds a patch placed in no cell
+  std::vector<uint32_t> clusterReachIndex_;  ///< per cluster: index into clusterReach_, or none
+  std::vector<CellSet> clusterReach_;
 };
 
 /// Clusters are linked only when the form factor from any point of one to the other is at most
@@ -78,6 +92,13 @@ inline constexpr double kMaxClusterFormFactor = 0.05;
 /// not well separated (kMaxClusterFormFactor). `brightX`, `brightY`: the largest radiosity over
 /// each cluster.
 double clusterTransferBound(const Cluster& x, const Cluster& y, double brightX, double brightY);
+
+/// clusterTransferBound's two directions: the reflected power into x and into y (both infinite
+/// when the clusters are not well separated).
+struct ClusterTransfer {
+  double intoX = 0, intoY = 0;
+};
+ClusterTransfer clusterTransfer(const Cluster& x, const Cluster& y, double brightX, double brightY);
 
 /// How a cluster link picks the source patch of a sample: half the picks by area, half by power
 /// (area × the patch's brightest radiosity channel when the link is sampled). By area alone, a

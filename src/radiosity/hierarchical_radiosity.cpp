@@ -38,7 +38,7 @@ Rgb& operator+=(Rgb& x, const Rgb& y) {
   return x = x + y;
 }
 double maxChannel(const Rgb& x) {
-  return std::max({x.r, x.g, x.b});
+  return x.maxChannel();
 }
 
 /// The rule of three: N agreeing samples bound the missed fraction by ~3 / N (95 %).
@@ -112,11 +112,27 @@ class Solver {
     }
     minArea_ = options.minArea * area;
     threshold_ = options.epsilon * stats_.emittedPower;
+    // Per patch, how much looser than threshold_ its own threshold is: 1 everywhere unless
+    // thresholdPower says otherwise (so that the uniform case compares exactly as before).
+    thresholdScale_.assign(scene.patches.size(), 1.0);
+    if (!options.thresholdPower.empty()) {
+      if (options.thresholdPower.size() != scene.patches.size())
+        throw std::invalid_argument("thresholdPower: one value per patch expected");
+      for (size_t k = 0; k < scene.patches.size(); ++k)
+        if (options.thresholdPower[k] > 0 && stats_.emittedPower > 0)
+          thresholdScale_[k] = options.thresholdPower[k] / stats_.emittedPower;
+    }
     stats_.visibility = std::string(visibility.name());
     stats_.patches = scene.patches.size();
     if (options.clusterSamples > 0 && visibility.answersSegments() && scene.patches.size() >= 2) {
       clusters_.emplace(scene);
       stats_.clustered = true;
+      clusterThresholdScale_.resize(clusters_->size());
+      for (uint32_t c = 0; c < clusters_->size(); ++c) {
+        double scale = INFINITY;
+        for (uint32_t p : clusters_->patchesOf(c)) scale = std::min(scale, thresholdScale_[p]);
+        clusterThresholdScale_[c] = scale;
+      }
     }
   }
 
@@ -339,6 +355,15 @@ class Solver {
     return link;
   }
 
+  /// Whether the light the link between clusters x and y may carry exceeds, in either
+  /// direction, the receiving cluster's threshold (its patches' smallest).
+  bool clusterOverThreshold(uint32_t x, uint32_t y) const {
+    const ClusterTransfer t =
+        clusterTransfer((*clusters_)[x], (*clusters_)[y], clusterBright_[x], clusterBright_[y]);
+    return t.intoX > threshold_ * clusterThresholdScale_[x] ||
+           t.intoY > threshold_ * clusterThresholdScale_[y];
+  }
+
   /// The BF error estimate (see RadiosityOptions::epsilon): reflected power the link may get
   /// wrong in either direction. Partial links count their whole unoccluded form factor: their
   /// visibility is a sample, and where it varies across the receiver is unknown.
@@ -394,6 +419,15 @@ class Solver {
     e.sourceB = maxChannel(reflectance_[eb.patch]) * ea.area * l.variationA * radiosityRange(l.a);
     e.clipA = maxChannel(reflectance_[ea.patch] * radiosity_[l.b]) * ea.area * ba * (1 - l.frontB);
     e.clipB = maxChannel(reflectance_[eb.patch] * radiosity_[l.a]) * eb.area * bb * (1 - l.frontA);
+    // Each end's error measured against its own threshold (RadiosityOptions::thresholdPower),
+    // in units of threshold_: which end is worse is then relative to what each may get wrong.
+    const double scaleA = 1 / thresholdScale_[ea.patch], scaleB = 1 / thresholdScale_[eb.patch];
+    e.intoA *= scaleA;
+    e.sourceA *= scaleA;
+    e.clipA *= scaleA;
+    e.intoB *= scaleB;
+    e.sourceB *= scaleB;
+    e.clipB *= scaleB;
     return e;
   }
 
@@ -458,8 +492,7 @@ class Solver {
       std::vector<char> over(clusterLinks_.size());
       parallelForEach(clusterLinks_.size(), [&](size_t i) {
         const ClusterLink& c = clusterLinks_[i];
-        over[i] = clusterTransferBound((*clusters_)[c.x], (*clusters_)[c.y], clusterBright_[c.x],
-                                       clusterBright_[c.y]) > threshold_;
+        over[i] = clusterOverThreshold(c.x, c.y);
       });
       std::vector<std::pair<uint32_t, uint32_t>> split;
       size_t kept = 0;
@@ -531,15 +564,14 @@ class Solver {
       }
       // No candidate pair between them: the oracle proved every pair invisible (in `blockers`,
       // the visibility graph lists none), so the two exchange nothing, at any level below.
-      if (!candidates_->anyBetween(cx, cy)) {
+      if (!candidates_->anyBetween(x, y)) {
         ++current_->clusterPairsInvisible;
         continue;
       }
       if (links_.size() + jobs.size() + clusterLinks_.size() / kClusterLinkShare >=
           options_.maxLinks)
         stats_.linkBudgetReached = true;
-      if (stats_.linkBudgetReached ||
-          clusterTransferBound(cx, cy, clusterBright_[x], clusterBright_[y]) <= threshold_) {
+      if (stats_.linkBudgetReached || !clusterOverThreshold(x, y)) {
         clusterLinks_.push_back({x, y});
         continue;
       }
@@ -1282,6 +1314,9 @@ class Solver {
   std::vector<Rgb> radiosity_, gathered_;    ///< per element
   std::vector<double> brightest_;  ///< per element: the largest leaf radiosity below (any channel)
   double minArea_ = 0, threshold_ = 0;
+  std::vector<double> thresholdScale_;  ///< per patch: its threshold over threshold_
+  /// Per cluster (once clustered): the smallest thresholdScale_ of its patches.
+  std::vector<double> clusterThresholdScale_;
   RadiosityStats stats_;
   RefinementStats* current_ = nullptr;
   /// Clustering (RadiosityOptions::clusterSamples): the tree, the oracle's candidate pairs, the

@@ -52,6 +52,12 @@ struct RadiosityOptions {
   /// misses), the whole unoccluded form factor for a Partial one (its visibility is a sample).
   /// B is the largest RGB channel. Relative, so it means the same in millimetres and in metres.
   double epsilon = 2e-5;
+  /// Per patch, the emitted power its BF threshold is `epsilon` times, in place of the scene's
+  /// total (empty: the total for every patch). A link is refined while the light it may get
+  /// wrong into either end exceeds that end's threshold; a cluster link compares with the
+  /// smallest of its patches'. Lets each room of a big building be judged against the lamps that
+  /// can light it rather than against every lamp of the building (thresholdPowerFromCells).
+  std::vector<double> thresholdPower;
   /// Receiver-side consistency: links that pass the BF test but end at an element that other
   /// links have subdivided hand every descendant the element's mean form factor. Where the point
   /// form factor varies across it, leaves get too much or too little, their form factors no

@@ -14,6 +14,7 @@
 #include "linespace/visibility_status.h"
 #include "radiosity/element_tree.h"
 #include "util/parallel_for.h"
+#include "visibility/patch_cell_reach.h"
 
 namespace gv {
 
@@ -100,6 +101,10 @@ class LinkVisibility {
   /// Whether every pair of patches is a candidate (forEachCandidatePair visits all n(n-1)/2, and
   /// with tube kNoTube), so that the solver need not keep the candidates to look pairs up.
   virtual bool everyPairIsCandidate() const { return false; }
+  /// When the candidates are exactly the pairs whose cells may see each other (all with tube
+  /// kNoTube): those cells, so that the solver looks pairs up through them instead of listing
+  /// them (hundreds of millions on a big building). Null otherwise.
+  virtual const PatchCellReach* candidateCells() const { return nullptr; }
   /// Whether the segment from `from` on patch `a` to `to` on patch `b` (a candidate pair, with
   /// the tube forEachCandidatePair gave it) is blocked. Thread-safe. Only if answersSegments().
   virtual bool segmentBlocked(uint32_t /*a*/, const Vec3& /*from*/, uint32_t /*b*/,

@@ -34,8 +34,8 @@ nlohmann::json countsJson(const LinkCounts& c) {
           {"invisible_percent", percent(c.invisible, total)}};
 }
 
-double maxChannel(const Rgb& c) {
-  return std::max({c.r, c.g, c.b});
+double maxChannel(const Rgb& x) {
+  return x.maxChannel();
 }
 
 }  // namespace

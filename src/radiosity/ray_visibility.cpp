@@ -11,10 +11,12 @@
 
 namespace gv {
 
-RayVisibility::RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink)
+RayVisibility::RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink,
+                             const PatchCellReach* cells)
     : scene_(scene),
       rays_(rays),
       raysPerLink_(raysPerLink),
+      cells_(cells),
       tol_(scene.tolerance()),
       endOffset_(kRayEndOffset * scene.bounds().diagonal()) {
   if (raysPerLink < 1) throw std::invalid_argument("rays per link must be at least 1");
@@ -22,6 +24,10 @@ RayVisibility::RayVisibility(const Scene& scene, const EmbreeScene& rays, int ra
 
 void RayVisibility::forEachCandidatePair(
     const std::function<void(uint32_t, uint32_t, TubeId)>& visit) {
+  if (cells_) {
+    cells_->forEachPair([&](uint32_t a, uint32_t b) { visit(a, b, kNoTube); });
+    return;
+  }
   const auto n = static_cast<uint32_t>(scene_.patches.size());
   for (uint32_t a = 0; a < n; ++a)
     for (uint32_t b = a + 1; b < n; ++b) visit(a, b, kNoTube);

@@ -19,13 +19,19 @@ inline constexpr double kRayEndOffset = 1e-6;
 /// `rays` mode. Visible when all rays reach, Invisible when none does (HSA91 then drops the link;
 /// a light path narrower than the ray spacing can be missed: the sampling error the paper's
 /// conservative blocker lists remove), Partial otherwise.
+///
+/// With cells (PatchCellReach), only the pairs whose cells may see each other are candidates: no
+/// link and no cluster sample between rooms that cannot see each other (the rays would all be
+/// blocked there anyway, so the solution is the same up to sampling, at a fraction of the rays).
 class RayVisibility final : public LinkVisibility {
  public:
-  /// `scene` and `rays` (the shared BVH) must outlive this. `raysPerLink` >= 1.
-  RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink);
+  /// `scene`, `rays` (the shared BVH) and `cells` (if given) must outlive this. `raysPerLink`
+  /// >= 1.
+  RayVisibility(const Scene& scene, const EmbreeScene& rays, int raysPerLink,
+                const PatchCellReach* cells = nullptr);
 
   std::string_view name() const override { return "rays"; }
-  /// All pairs a < b of the scene's patches (n(n-1)/2).
+  /// All pairs a < b of the scene's patches (n(n-1)/2), or those whose cells may see each other.
   void forEachCandidatePair(const std::function<void(uint32_t, uint32_t, TubeId)>& visit) override;
   /// raysPerLink segments between stratified points of the parts of a and b that exchange light
   /// (exchangingParts) (paired by a random
@@ -35,7 +41,10 @@ class RayVisibility final : public LinkVisibility {
   /// The queries in parallel: estimate keeps no state and EmbreeScene::occluded is thread-safe.
   std::vector<VisibilityEstimate> estimateAll(std::span<const LinkQuery> queries) override;
   bool answersSegments() const override { return true; }
-  bool everyPairIsCandidate() const override { return true; }
+  bool everyPairIsCandidate() const override { return !cells_ || !cells_->known(); }
+  const PatchCellReach* candidateCells() const override {
+    return cells_ && cells_->known() ? cells_ : nullptr;
+  }
   /// EmbreeScene::occluded ignoring a and b, the ends pulled in as for a link's rays.
   bool segmentBlocked(uint32_t a, const Vec3& from, uint32_t b, const Vec3& to,
                       TubeId pairTube) const override;
@@ -44,6 +53,7 @@ class RayVisibility final : public LinkVisibility {
   const Scene& scene_;
   const EmbreeScene& rays_;
   int raysPerLink_;
+  const PatchCellReach* cells_;
   Tolerance tol_;
   double endOffset_;  ///< kRayEndOffset times the scene's diagonal
 };

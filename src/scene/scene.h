@@ -1,6 +1,7 @@
 // The scene model: convex one-sided patches with a diffuse material each. What every stage reads.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,6 +16,8 @@ struct Rgb {
   double r = 0, g = 0, b = 0;
   constexpr bool operator==(const Rgb&) const = default;
   constexpr bool isBlack() const { return r == 0 && g == 0 && b == 0; }
+  /// The largest channel (the solver's scalar for power and error bounds).
+  constexpr double maxChannel() const { return std::max({r, g, b}); }
 };
 
 /// A diffuse material. `reflectance` is MTL's Kd, `emission` MTL's Ke (emitted radiosity).
@@ -31,18 +34,18 @@ inline constexpr uint32_t kNoSourceFace = UINT32_MAX;
 /// A patch: a convex planar one-sided polygon (front = counter-clockwise side) with a material.
 struct Patch {
   ConvexPolygon polygon;
-  uint32_t material = 0;              ///< index into Scene::materials
+  uint32_t material = 0;                ///< index into Scene::materials
   uint32_t sourceFace = kNoSourceFace;  ///< 0-based index of the input face it came from
 };
 
 /// What import did to the input faces; reported by `globalvis info`.
 struct ImportReport {
   size_t facesIn = 0;
-  size_t droppedDegenerate = 0;   ///< zero area, repeated or collinear vertices
-  size_t splitNonConvex = 0;      ///< planar non-convex faces decomposed into convex pieces
+  size_t droppedDegenerate = 0;      ///< zero area, repeated or collinear vertices
+  size_t splitNonConvex = 0;         ///< planar non-convex faces decomposed into convex pieces
   size_t triangulatedNonPlanar = 0;  ///< faces beyond the planarity tolerance, triangulated
-  size_t splitAtContacts = 0;  ///< patches cut along the outlines of patches resting on them
-  size_t contactPieces = 0;    ///< the pieces those patches became (scene/contact_split.h)
+  size_t splitAtContacts = 0;        ///< patches cut along the outlines of patches resting on them
+  size_t contactPieces = 0;          ///< the pieces those patches became (scene/contact_split.h)
   /// Faces no air reaches and coincident twins (bsp/hidden_faces.h), when that pass ran.
   size_t hiddenDropped = 0;      ///< patches whose front looks only into closed solids
   size_t coincidentDropped = 0;  ///< same-facing twins wholly covered by earlier patches

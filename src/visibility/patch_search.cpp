@@ -716,6 +716,22 @@ class PatchSearch {
 
 }  // namespace
 
+std::vector<std::vector<uint32_t>> frontCellsOfPatches(const Scene& scene, const Subdivision& sub,
+                                                       bool outsideSlivers) {
+  const PatchPlacement placed = placePatches(scene, sub, sub.tree.tol, outsideSlivers);
+  std::vector<std::vector<uint32_t>> cells(scene.patches.size());
+  for (size_t p = 0; p < cells.size(); ++p) {
+    for (const auto& [cell, piece] : placed.placements[p]) {
+      const CellPatch& cp = placed.cellPatches[cell][piece];
+      // As PatchSearch::run starts from, and as it flags kSeenFront: the front's cells only.
+      if (cp.facesIn || cp.interior) cells[p].push_back(cell);
+    }
+    std::sort(cells[p].begin(), cells[p].end());
+    cells[p].erase(std::unique(cells[p].begin(), cells[p].end()), cells[p].end());
+  }
+  return cells;
+}
+
 std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivision& sub,
                                              const CellVisibility& cells, int threads,
                                              const PropagationOptions& options,

@@ -46,6 +46,14 @@ struct PatchSearchResult {
   bool overBudget = false;
 };
 
+/// The cells each patch's front looks into, as the patch searches place its pieces (the BSP's
+/// placement, plus the pieces across coplanar openings and thin walls; `outsideSlivers` as in
+/// PropagationOptions), sorted, per patch: the pieces that face into their cell or lie inside it
+/// (either side). A search from S starts in these cells only, and it sees T's front only through
+/// T's pieces in them.
+std::vector<std::vector<uint32_t>> frontCellsOfPatches(const Scene& scene, const Subdivision& sub,
+                                                       bool outsideSlivers);
+
 /// The patch searches from every patch of `scene` (its pieces placed in the cells of `sub`),
 /// bounded by the cell-to-cell answer; result s is patch s's. Fills the patch fields of `st`
 /// (not patchSeconds); `threads` as resolved by computeVisibility; options' patch budget,

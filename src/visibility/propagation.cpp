@@ -21,23 +21,32 @@
 
 namespace gv {
 
-VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
-                                  const PropagationOptions& options) {
-  const auto start = Clock::now();
+SearchSubdivision prepareSearchSubdivision(const Scene& scene, const Subdivision& input,
+                                           bool mergeCells) {
+  SearchSubdivision out;
+  out.input = &input;
   // Regions no patch faces into (closed solids' insides) lose their portals first: the searches
   // would walk them for nothing (live_cells.cpp says why nothing is lost).
-  const LiveCells live = findLiveCells(scene, input);
-  std::optional<Subdivision> pruned;
-  if (live.deadPortals > 0) pruned = withoutDeadPortals(input, live);
+  out.live = findLiveCells(scene, input);
+  if (out.live.deadPortals > 0) out.changed = withoutDeadPortals(input, out.live);
   // Then the cells are merged (convex_merge.h): the level's outside becomes one cell, and open
   // space cut into slabs by far-away planes one cell per convex union.
   // Then the pieces of one opening between two merged cells become one portal (portal_join.h).
-  PortalJoinStats joined;
-  if (options.mergeConvexCells) {
-    pruned = mergeConvexCells(scene, pruned ? std::move(*pruned) : input);
-    joined = joinCoplanarPortals(*pruned);
+  if (mergeCells) {
+    out.changed = mergeConvexCells(scene, out.changed ? std::move(*out.changed) : input);
+    out.joined = joinCoplanarPortals(*out.changed);
   }
-  const Subdivision& sub = pruned ? *pruned : input;
+  return out;
+}
+
+VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
+                                  const PropagationOptions& options) {
+  const auto start = Clock::now();
+  const SearchSubdivision prepared =
+      prepareSearchSubdivision(scene, input, options.mergeConvexCells);
+  const LiveCells& live = prepared.live;
+  const PortalJoinStats& joined = prepared.joined;
+  const Subdivision& sub = prepared.get();
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
   const int threads =

@@ -7,11 +7,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "bsp/subdivision.h"
 #include "scene/scene.h"
 #include "util/timing.h"
 #include "visibility/blocker_lists.h"
+#include "visibility/live_cells.h"
+#include "visibility/portal_join.h"
 #include "visibility/search_deadline.h"
 #include "visibility/visibility_graph.h"
 
@@ -93,6 +96,21 @@ struct PropagationOptions {
   /// pair or two that 10^6 rays at a contact distance of 1e-5 find, and none at 1e-6.
   bool outsideSlivers = false;
 };
+
+/// The subdivision the searches walk, made from the one the BSP built: the portals of regions
+/// no patch faces into dropped (live_cells.h), then, when `mergeCells`, convex unions of cells
+/// merged and the pieces of one opening joined (convex_merge.h, portal_join.h). Conservative:
+/// no sightline between patches is lost.
+struct SearchSubdivision {
+  const Subdivision* input = nullptr;
+  std::optional<Subdivision> changed;  ///< unset when nothing changed the input
+  LiveCells live;
+  PortalJoinStats joined;
+  const Subdivision& get() const { return changed ? *changed : *input; }
+};
+/// `input` must outlive the result.
+SearchSubdivision prepareSearchSubdivision(const Scene& scene, const Subdivision& input,
+                                           bool mergeCells);
 
 /// The conservative visibility graph of `scene` over its subdivision:
 /// - a pair (S, R) is listed whenever some segment from the front of S to the front of R meets no
