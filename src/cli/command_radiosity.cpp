@@ -233,12 +233,7 @@ Action addRadiosityCommand(CLI::App& app) {
         cellReach = std::make_unique<PatchCellReach>(scene, sub, propagation);
         cellBar.finish();
         if (!s->sceneThreshold && cellReach->known()) {
-          std::vector<double> emitted;
-          emitted.reserve(scene.patches.size());
-          for (const Patch& p : scene.patches)
-            emitted.push_back(p.polygon.area() *
-                              scene.materials.at(p.material).emission.maxChannel());
-          s->options.thresholdPower = cellReach->powerInView(emitted);
+          s->options.thresholdPower = cellReach->powerInView(scene.emittedPower());
         }
       }
       bvh = std::make_unique<EmbreeScene>(scene);

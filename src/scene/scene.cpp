@@ -22,6 +22,14 @@ size_t Scene::emitterCount() const {
   return n;
 }
 
+std::vector<double> Scene::emittedPower() const {
+  std::vector<double> power;
+  power.reserve(patches.size());
+  for (const Patch& p : patches)
+    power.push_back(p.polygon.area() * materials.at(p.material).emission.maxChannel());
+  return power;
+}
+
 uint32_t Scene::addMaterial(Material m) {
   materials.push_back(std::move(m));
   return static_cast<uint32_t>(materials.size() - 1);

@@ -64,6 +64,8 @@ struct Scene {
   Tolerance tolerance() const { return Tolerance::forBounds(bounds()); }
   double totalArea() const;
   size_t emitterCount() const;  ///< patches whose material emits
+  /// Per patch, its emitted power: area × the largest channel of its emission (0 for most).
+  std::vector<double> emittedPower() const;
   /// Adds a material and returns its index.
   uint32_t addMaterial(Material m);
 };

@@ -8,42 +8,16 @@
 #include <cstdio>
 #include <random>
 
-#include "bsp/hidden_faces.h"
-#include "bsp/subdivision.h"
-#include "generators/office.h"
 #include "radiosity/cluster_links.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/patch_clusters.h"
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
-#include "scene/contact_split.h"
+#include "support/office_cells.h"
 #include "visibility/patch_cell_reach.h"
 
 namespace gv {
 namespace {
-
-/// The office as `globalvis radiosity` reads it: cut along contacts, hidden faces dropped.
-Scene office(const OfficeOptions& o) {
-  Scene scene = generateOffice(o);
-  splitPatchesAtContacts(scene);
-  HiddenFaceOptions hidden;
-  hidden.cutPartly = true;
-  return removeHiddenFaces(scene, hidden);
-}
-
-PatchCellReach reachOf(const Scene& scene) {
-  const Subdivision sub = buildVisibilitySubdivision(scene, BspOptions{});
-  PropagationOptions options;
-  options.threads = 2;
-  return PatchCellReach(scene, sub, options);
-}
-
-std::vector<double> emittedPower(const Scene& scene) {
-  std::vector<double> power;
-  for (const Patch& p : scene.patches)
-    power.push_back(p.polygon.area() * scene.materials.at(p.material).emission.maxChannel());
-  return power;
-}
 
 double luminance(const Rgb& c) {
   return (c.r + c.g + c.b) / 3;
@@ -54,8 +28,8 @@ TEST(CellCullingTest, CandidateLookupsThroughTheCellsAgreeWithThePairsByBruteFor
   o.rows = 1;
   o.columns = 3;
   o.floors = 2;
-  const Scene scene = office(o);
-  const PatchCellReach reach = reachOf(scene);
+  const Scene scene = test::radiosityOffice(o);
+  const PatchCellReach reach = test::cellReachOf(scene);
   ASSERT_TRUE(reach.known());
   const EmbreeScene bvh(scene);
   RayVisibility visibility(scene, bvh, 4, &reach);
@@ -102,8 +76,8 @@ TEST(CellCullingTest, CulledLinksGiveTheSolutionOfEveryPairLinked) {
   o.columns = 3;
   o.floors = 2;
   o.furniture = false;
-  const Scene scene = office(o);
-  const PatchCellReach reach = reachOf(scene);
+  const Scene scene = test::radiosityOffice(o);
+  const PatchCellReach reach = test::cellReachOf(scene);
   const EmbreeScene bvh(scene);
   RadiosityOptions options;
   options.epsilon = 2e-4;
@@ -135,15 +109,12 @@ TEST(CellCullingTest, CulledLinksGiveTheSolutionOfEveryPairLinked) {
 
 /// Leaves on the patches of room (0, 0, 0) of an office.
 size_t leavesInFirstRoom(const OfficeOptions& o, const Scene& scene, const RadiosityResult& r) {
-  Aabb room = officeRoomInterior(o, 0, 0, 0);
-  const double m = o.wallThickness / 3;
+  const Aabb room = officeRoomInterior(o, 0, 0, 0);
   size_t leaves = 0;
   for (size_t e = 0; e < r.elements.size(); ++e) {
     const Element& el = r.elements[static_cast<uint32_t>(e)];
-    if (!el.isLeaf()) continue;
-    const Vec3 c = scene.patches[el.patch].polygon.centroid();
-    if (c.x >= room.lo.x - m && c.x <= room.hi.x + m && c.y >= room.lo.y - m &&
-        c.y <= room.hi.y + m && c.z >= room.lo.z - m && c.z <= room.hi.z + m)
+    if (el.isLeaf() &&
+        test::insideGrown(room, scene.patches[el.patch].polygon.centroid(), o.wallThickness / 3))
       ++leaves;
   }
   return leaves;
@@ -157,11 +128,11 @@ TEST(CellCullingTest, ARoomIsRefinedAlikeAloneAndInsideABuildingWithThresholdsPe
   options.epsilon = 2e-4;
   options.clusterSamples = 2;
   auto solve = [&](const OfficeOptions& o, bool perRoom, const Scene& scene) {
-    const PatchCellReach reach = reachOf(scene);
+    const PatchCellReach reach = test::cellReachOf(scene);
     const EmbreeScene bvh(scene);
     RayVisibility visibility(scene, bvh, 16, &reach);
     RadiosityOptions opt = options;
-    if (perRoom) opt.thresholdPower = reach.powerInView(emittedPower(scene));
+    if (perRoom) opt.thresholdPower = reach.powerInView(scene.emittedPower());
     const RadiosityResult r = solveRadiosity(scene, visibility, opt);
     EXPECT_TRUE(r.stats.converged);
     return leavesInFirstRoom(o, scene, r);
@@ -174,7 +145,7 @@ TEST(CellCullingTest, ARoomIsRefinedAlikeAloneAndInsideABuildingWithThresholdsPe
   one.furniture = false;
   OfficeOptions four = one;
   four.columns = 4;
-  const Scene alone = office(one), building = office(four);
+  const Scene alone = test::radiosityOffice(one), building = test::radiosityOffice(four);
   // Alone, the room is judged against its own lamp too (its sealed corridor's lamp left out).
   const size_t aloneLeaves = solve(one, true, alone);
   const size_t sceneThreshold = solve(four, false, building);
@@ -193,7 +164,7 @@ TEST(CellCullingTest, ThresholdPowerOfTheWholeSceneEverywhereChangesNothing) {
   o.rows = 1;
   o.columns = 2;
   o.furniture = false;
-  const Scene scene = office(o);
+  const Scene scene = test::radiosityOffice(o);
   const EmbreeScene bvh(scene);
   RayVisibility visibility(scene, bvh, 16);
   RadiosityOptions options;

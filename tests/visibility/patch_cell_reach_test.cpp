@@ -9,43 +9,18 @@
 #include <optional>
 #include <random>
 
-#include "bsp/hidden_faces.h"
-#include "bsp/subdivision.h"
-#include "generators/office.h"
-#include "scene/contact_split.h"
+#include "support/office_cells.h"
 #include "visibility/ray_oracle.h"
 
 namespace gv {
 namespace {
 
-PatchCellReach reachOf(const Scene& scene) {
-  const Subdivision sub = buildVisibilitySubdivision(scene, BspOptions{});
-  PropagationOptions options;
-  options.threads = 2;
-  return PatchCellReach(scene, sub, options);
-}
-
 /// The room or corridor (index into `boxes`) whose air the patch's centroid borders (the box
 /// grown by less than half a wall); nullopt for the building's outer faces.
 std::optional<size_t> spaceOf(const Patch& p, const std::vector<Aabb>& boxes, double margin) {
-  const Vec3 c = p.polygon.centroid();
-  for (size_t i = 0; i < boxes.size(); ++i) {
-    const Aabb& b = boxes[i];
-    if (c.x >= b.lo.x - margin && c.x <= b.hi.x + margin && c.y >= b.lo.y - margin &&
-        c.y <= b.hi.y + margin && c.z >= b.lo.z - margin && c.z <= b.hi.z + margin)
-      return i;
-  }
+  for (size_t i = 0; i < boxes.size(); ++i)
+    if (test::insideGrown(boxes[i], p.polygon.centroid(), margin)) return i;
   return std::nullopt;
-}
-
-/// The office as `globalvis radiosity` reads it: the floor and ceiling cut along the walls
-/// standing on them, and the faces no air reaches (wall ends in the slabs) dropped.
-Scene office(const OfficeOptions& o) {
-  Scene scene = generateOffice(o);
-  splitPatchesAtContacts(scene);
-  HiddenFaceOptions hidden;
-  hidden.cutPartly = true;
-  return removeHiddenFaces(scene, hidden);
 }
 
 TEST(PatchCellReachTest, SealedRoomsNeverPairAndSeeOnlyTheirOwnLamps) {
@@ -54,8 +29,8 @@ TEST(PatchCellReachTest, SealedRoomsNeverPairAndSeeOnlyTheirOwnLamps) {
   o.columns = 3;
   o.doors = false;
   o.windows = false;
-  const Scene scene = office(o);
-  const PatchCellReach reach = reachOf(scene);
+  const Scene scene = test::radiosityOffice(o);
+  const PatchCellReach reach = test::cellReachOf(scene);
   ASSERT_TRUE(reach.known());
   EXPECT_EQ(reach.unplacedPatches(), 0u);
   std::vector<Aabb> spaces;
@@ -90,11 +65,9 @@ TEST(PatchCellReachTest, SealedRoomsNeverPairAndSeeOnlyTheirOwnLamps) {
     }
 
   // Each space's patches see exactly the power of the lamps in it.
-  std::vector<double> power(scene.patches.size(), 0.0);
+  const std::vector<double> power = scene.emittedPower();
   std::vector<double> spacePower(spaces.size(), 0.0);
   for (size_t p = 0; p < scene.patches.size(); ++p) {
-    power[p] = scene.patches[p].polygon.area() *
-               scene.materials.at(scene.patches[p].material).emission.maxChannel();
     if (power[p] > 0) {
       ASSERT_TRUE(space[p].has_value()) << p;  // the lamps hang inside
       spacePower[*space[p]] += power[p];
@@ -116,8 +89,8 @@ TEST(PatchCellReachTest, EverySegmentClearFromFrontToFrontJoinsAPair) {
   o.floors = 2;
   o.rows = 1;
   o.columns = 3;
-  const Scene scene = office(o);
-  const PatchCellReach reach = reachOf(scene);
+  const Scene scene = test::radiosityOffice(o);
+  const PatchCellReach reach = test::cellReachOf(scene);
   ASSERT_TRUE(reach.known());
   const size_t n = scene.patches.size();
   EXPECT_LT(reach.countPairs(), n * (n - 1) / 2 * 6 / 10);  // the storeys alone halve them

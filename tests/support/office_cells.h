@@ -1,0 +1,37 @@
+// The office as `globalvis radiosity` reads it, and its cells: for the tests of the cell culling
+// (visibility/patch_cell_reach.h) and of the radiosity that uses it.
+#pragma once
+
+#include "bsp/hidden_faces.h"
+#include "bsp/subdivision.h"
+#include "generators/office.h"
+#include "scene/contact_split.h"
+#include "visibility/patch_cell_reach.h"
+
+namespace gv::test {
+
+/// The floors and ceilings cut along the walls standing on them, and the faces no air reaches
+/// (wall ends in the slabs) dropped, as loadPipelineScene does for `radiosity`.
+inline Scene radiosityOffice(const OfficeOptions& o) {
+  Scene scene = generateOffice(o);
+  splitPatchesAtContacts(scene);
+  HiddenFaceOptions hidden;
+  hidden.cutPartly = true;
+  return removeHiddenFaces(scene, hidden);
+}
+
+/// Whether `c` lies in `box` grown by `margin` on every side.
+inline bool insideGrown(const Aabb& box, const Vec3& c, double margin) {
+  return c.x >= box.lo.x - margin && c.x <= box.hi.x + margin && c.y >= box.lo.y - margin &&
+         c.y <= box.hi.y + margin && c.z >= box.lo.z - margin && c.z <= box.hi.z + margin;
+}
+
+/// PatchCellReach over `vis`'s cells of the scene, 2 threads.
+inline PatchCellReach cellReachOf(const Scene& scene) {
+  const Subdivision sub = buildVisibilitySubdivision(scene, BspOptions{});
+  PropagationOptions options;
+  options.threads = 2;
+  return PatchCellReach(scene, sub, options);
+}
+
+}  // namespace gv::test
