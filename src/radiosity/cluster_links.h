@@ -48,9 +48,9 @@ class CandidatePairs {
   /// The pair's tube, or nullopt when (a, b) is not a candidate (no light passes). a != b.
   std::optional<TubeId> find(uint32_t a, uint32_t b) const;
   /// Whether any patch of clusters x and any patch of y (ids in the tree given) form a candidate
-  /// pair. None: the oracle proved
-  /// every pair between them invisible (the visibility graph lists none), so no light passes
-  /// between the two clusters. x and y disjoint.
+  /// pair. None: the oracle proved every pair between them invisible (the visibility graph
+  /// lists none, or their cells cannot see each other), so no light passes between the two
+  /// clusters. x and y disjoint.
   bool anyBetween(uint32_t x, uint32_t y) const;
   /// How many pairs are candidates.
   size_t count() const { return count_; }

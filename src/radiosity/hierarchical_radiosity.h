@@ -56,7 +56,7 @@ struct RadiosityOptions {
   /// total (empty: the total for every patch). A link is refined while the light it may get
   /// wrong into either end exceeds that end's threshold; a cluster link compares with the
   /// smallest of its patches'. Lets each room of a big building be judged against the lamps that
-  /// can light it rather than against every lamp of the building (thresholdPowerFromCells).
+  /// can light it rather than against every lamp of the building (PatchCellReach::powerInView).
   std::vector<double> thresholdPower;
   /// Receiver-side consistency: links that pass the BF test but end at an element that other
   /// links have subdivided hand every descendant the element's mean form factor. Where the point

@@ -30,7 +30,7 @@ PatchCellReach::PatchCellReach(const Scene& scene, const Subdivision& input,
   stats_.deadPortals = prepared.live.deadPortals;
   stats_.threads = threads;
   CellVisibility cells = computeCellVisibility(sub, threads, options, stats_);
-  stats_.cellSeconds = secondsSince(start);
+  stats_.seconds = stats_.cellSeconds = secondsSince(start);
   if (cells.cellReach.empty()) return;  // unknown: every pair may see
   reach_ = std::move(cells.cellReach);
   cellsOf_ = frontCellsOfPatches(scene, sub, options.outsideSlivers);

@@ -1,8 +1,9 @@
 // Which pairs of patches may see each other at all, from the cells they lie in: the cell-to-cell
 // stage of the visibility pipeline (paper §4.1) lifted to patches, without the patch searches
-// and blocker lists after it. Cheap (the 100k office: about a second) and conservative: a
-// sightline from S to R starts in a cell S has a piece in and ends in one R has a piece in, and
-// the cell stage never leaves out a cell a sightline can reach. `rays` radiosity links only
+// and blocker lists after it. Cheap next to what it saves (the 100k office: 13-19 s with its BSP,
+// for 92 % of the pairs never linked) and conservative: a sightline from S's front to R's front
+// starts in a cell S's front looks into and ends in one R's front looks into, and the cell stage
+// never leaves out a cell a sightline can reach. `rays` radiosity links only
 // these pairs, so that no ray is cast between rooms that cannot see each other.
 #pragma once
 
@@ -36,7 +37,7 @@ class PatchCellReach {
   /// How many pairs forEachPair visits (it walks them all, without the calls).
   size_t countPairs() const;
 
-  /// The cells the front of patch p looks into, sorted (empty: unplaced, or !known()).
+  /// The cells the front of patch p looks into, sorted (empty: unplaced). Only when known().
   const std::vector<uint32_t>& cellsOf(uint32_t p) const { return cellsOf_[p]; }
   /// The cells cell c may see (c included; symmetric). Only when known().
   const CellSet& reach(uint32_t c) const { return reach_[c]; }
