@@ -1,8 +1,6 @@
 // Patch pairs bounded by cell-to-cell visibility.
 #include "visibility/patch_cell_reach.h"
 
-#include <tbb/task_arena.h>
-
 #include <algorithm>
 #include <numeric>
 
@@ -19,16 +17,8 @@ PatchCellReach::PatchCellReach(const Scene& scene, const Subdivision& input,
   const SearchSubdivision prepared =
       prepareSearchSubdivision(scene, input, options.mergeConvexCells);
   const Subdivision& sub = prepared.get();
-  const int threads =
-      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
-  stats_.patches = patches_;
-  stats_.cells = sub.cells.size();
-  stats_.portals = sub.portals.size();
-  stats_.cellsBeforeMerge = input.cells.size();
-  stats_.portalsBeforeMerge = input.portals.size();
-  stats_.deadCells = prepared.live.deadCells;
-  stats_.deadPortals = prepared.live.deadPortals;
-  stats_.threads = threads;
+  const int threads = resolvedThreads(options);
+  recordSubdivisionStats(prepared, patches_, threads, stats_);
   CellVisibility cells = computeCellVisibility(sub, threads, options, stats_);
   stats_.seconds = stats_.cellSeconds = secondsSince(start);
   if (cells.cellReach.empty()) return;  // unknown: every pair may see
@@ -52,6 +42,13 @@ bool PatchCellReach::maySee(uint32_t a, uint32_t b) const {
 
 namespace {
 
+/// out := the union of the reach of `cells`.
+void uniteReach(const std::vector<uint32_t>& cells, const std::vector<CellSet>& reach,
+                CellSet& out) {
+  out.clear();
+  for (uint32_t c : cells) out.unite(reach[c]);
+}
+
 /// Calls partners(a, list) for every patch a with the patches b > a whose cells a's cells may
 /// see, ascending (cells known).
 template <class F>
@@ -71,8 +68,7 @@ void forEachPartnerList(size_t n, const std::vector<std::vector<uint32_t>>& cell
       partners(a, list);
       continue;
     }
-    reached.clear();
-    for (uint32_t c : cellsOf[a]) reached.unite(reach[c]);
+    uniteReach(cellsOf[a], reach, reached);
     auto add = [&](uint32_t b) {
       if (b > a && stamp[b] != a) {
         stamp[b] = a;
@@ -111,10 +107,6 @@ size_t PatchCellReach::countPairs() const {
   return count;
 }
 
-}  // namespace gv
-
-namespace gv {
-
 std::vector<double> PatchCellReach::powerInView(const std::vector<double>& power) const {
   const double total = std::accumulate(power.begin(), power.end(), 0.0);
   std::vector<double> out(patches_, total);
@@ -124,8 +116,7 @@ std::vector<double> PatchCellReach::powerInView(const std::vector<double>& power
   CellSet reached(reach_.size());
   for (uint32_t p = 0; p < patches_; ++p) {
     if (!(power[p] > 0) || cellsOf_[p].empty()) continue;
-    reached.clear();
-    for (uint32_t c : cellsOf_[p]) reached.unite(reach_[c]);
+    uniteReach(cellsOf_[p], reach_, reached);
     reached.forEach([&](size_t d) { cellPower[d] += power[p]; });
   }
   for (uint32_t p = 0; p < patches_; ++p) {

@@ -35,8 +35,27 @@ SearchSubdivision prepareSearchSubdivision(const Scene& scene, const Subdivision
   if (mergeCells) {
     out.changed = mergeConvexCells(scene, out.changed ? std::move(*out.changed) : input);
     out.joined = joinCoplanarPortals(*out.changed);
+    out.merged = true;
   }
   return out;
+}
+
+void recordSubdivisionStats(const SearchSubdivision& prepared, size_t patches, int threads,
+                            VisibilityStats& st) {
+  const Subdivision& sub = prepared.get();
+  st.patches = patches;
+  st.cells = sub.cells.size();
+  st.portals = sub.portals.size();
+  st.cellsBeforeMerge = prepared.input->cells.size();
+  st.portalsBeforeMerge = prepared.input->portals.size();
+  st.portalsBeforeJoin = prepared.merged ? prepared.joined.portalsBefore : sub.portals.size();
+  st.deadCells = prepared.live.deadCells;
+  st.deadPortals = prepared.live.deadPortals;
+  st.threads = threads;
+}
+
+int resolvedThreads(const PropagationOptions& options) {
+  return options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
 }
 
 VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
@@ -44,27 +63,16 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
   const auto start = Clock::now();
   const SearchSubdivision prepared =
       prepareSearchSubdivision(scene, input, options.mergeConvexCells);
-  const LiveCells& live = prepared.live;
-  const PortalJoinStats& joined = prepared.joined;
   const Subdivision& sub = prepared.get();
   const Tolerance tol = sub.tree.tol;
   const size_t n = scene.patches.size();
-  const int threads =
-      options.threads > 0 ? options.threads : tbb::this_task_arena::max_concurrency();
+  const int threads = resolvedThreads(options);
   VisibilityGraph graph;
   VisibilityStats& st = graph.stats;
   if (n >= kMaxPatches)
     throw std::length_error(
         fmt::format("visibility: {} patches, at most {} supported", n, kMaxPatches - 1));
-  st.patches = n;
-  st.cells = sub.cells.size();
-  st.portals = sub.portals.size();
-  st.cellsBeforeMerge = input.cells.size();
-  st.portalsBeforeMerge = input.portals.size();
-  st.portalsBeforeJoin = options.mergeConvexCells ? joined.portalsBefore : sub.portals.size();
-  st.deadCells = live.deadCells;
-  st.deadPortals = live.deadPortals;
-  st.threads = threads;
+  recordSubdivisionStats(prepared, n, threads, st);
 
   const CellVisibility cells = computeCellVisibility(sub, threads, options, st);  // §4.1
   st.cellSeconds = secondsSince(start);

@@ -105,12 +105,19 @@ struct SearchSubdivision {
   const Subdivision* input = nullptr;
   std::optional<Subdivision> changed;  ///< unset when nothing changed the input
   LiveCells live;
+  bool merged = false;  ///< cells merged and portal pieces joined (`joined` says how)
   PortalJoinStats joined;
   const Subdivision& get() const { return changed ? *changed : *input; }
 };
 /// `input` must outlive the result.
 SearchSubdivision prepareSearchSubdivision(const Scene& scene, const Subdivision& input,
                                            bool mergeCells);
+/// Fills the subdivision fields of `st`: patches, cells and portals (before and after the merge
+/// and the join), the dead regions, and the threads.
+void recordSubdivisionStats(const SearchSubdivision& prepared, size_t patches, int threads,
+                            VisibilityStats& st);
+/// PropagationOptions::threads resolved (0: all hardware threads).
+int resolvedThreads(const PropagationOptions& options);
 
 /// The conservative visibility graph of `scene` over its subdivision:
 /// - a pair (S, R) is listed whenever some segment from the front of S to the front of R meets no

@@ -24,10 +24,7 @@ double luminance(const Rgb& c) {
 }
 
 TEST(CellCullingTest, CandidateLookupsThroughTheCellsAgreeWithThePairsByBruteForce) {
-  OfficeOptions o;
-  o.rows = 1;
-  o.columns = 3;
-  o.floors = 2;
+  const OfficeOptions o = test::twoStoreysOfThreeRooms();
   const Scene scene = test::radiosityOffice(o);
   const PatchCellReach reach = test::cellReachOf(scene);
   ASSERT_TRUE(reach.known());
@@ -71,10 +68,7 @@ TEST(CellCullingTest, CandidateLookupsThroughTheCellsAgreeWithThePairsByBruteFor
 TEST(CellCullingTest, CulledLinksGiveTheSolutionOfEveryPairLinked) {
   // Culling drops pairs whose every segment is blocked: the solution is the one with every pair
   // linked, up to the sampling of the links and cluster links the two runs make differently.
-  OfficeOptions o;
-  o.rows = 1;
-  o.columns = 3;
-  o.floors = 2;
+  OfficeOptions o = test::twoStoreysOfThreeRooms();
   o.furniture = false;
   const Scene scene = test::radiosityOffice(o);
   const PatchCellReach reach = test::cellReachOf(scene);

@@ -10,6 +10,16 @@
 
 namespace gv::test {
 
+/// Two storeys of one row of three rooms, with doors and windows: light goes from room to room
+/// and along the corridors, never between storeys.
+inline OfficeOptions twoStoreysOfThreeRooms() {
+  OfficeOptions o;
+  o.floors = 2;
+  o.rows = 1;
+  o.columns = 3;
+  return o;
+}
+
 /// The floors and ceilings cut along the walls standing on them, and the faces no air reaches
 /// (wall ends in the slabs) dropped, as loadPipelineScene does for `radiosity`.
 inline Scene radiosityOffice(const OfficeOptions& o) {

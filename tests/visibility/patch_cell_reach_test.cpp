@@ -83,12 +83,7 @@ TEST(PatchCellReachTest, SealedRoomsNeverPairAndSeeOnlyTheirOwnLamps) {
 }
 
 TEST(PatchCellReachTest, EverySegmentClearFromFrontToFrontJoinsAPair) {
-  // Two storeys of rooms with doors and windows: light goes from room to room, along the
-  // corridors and through the windows; never between storeys.
-  OfficeOptions o;
-  o.floors = 2;
-  o.rows = 1;
-  o.columns = 3;
+  const OfficeOptions o = test::twoStoreysOfThreeRooms();
   const Scene scene = test::radiosityOffice(o);
   const PatchCellReach reach = test::cellReachOf(scene);
   ASSERT_TRUE(reach.known());
