@@ -1,5 +1,5 @@
-// The office as `globalvis radiosity` reads it, and its cells: for the tests of the cell culling
-// (visibility/patch_cell_reach.h) and of the radiosity that uses it.
+// The office (or any scene) as `globalvis radiosity` reads it, and its cells: for the tests of the
+// cell culling (visibility/patch_cell_reach.h) and of the radiosity that uses it.
 #pragma once
 
 #include "bsp/hidden_faces.h"
@@ -20,14 +20,18 @@ inline OfficeOptions twoStoreysOfThreeRooms() {
   return o;
 }
 
-/// The floors and ceilings cut along the walls standing on them, and the faces no air reaches
-/// (wall ends in the slabs) dropped, as loadPipelineScene does for `radiosity`.
-inline Scene radiosityOffice(const OfficeOptions& o) {
-  Scene scene = generateOffice(o);
+/// `scene` as loadPipelineScene hands it to `radiosity`: cut along its contacts (a floor along
+/// the walls standing on it), then the faces no air reaches dropped (wall ends in the slabs).
+inline Scene asRadiosityReadsIt(Scene scene) {
   splitPatchesAtContacts(scene);
   HiddenFaceOptions hidden;
   hidden.cutPartly = true;
   return removeHiddenFaces(scene, hidden);
+}
+
+/// The office as `radiosity` reads it.
+inline Scene radiosityOffice(const OfficeOptions& o) {
+  return asRadiosityReadsIt(generateOffice(o));
 }
 
 /// Whether `c` lies in `box` grown by `margin` on every side.
