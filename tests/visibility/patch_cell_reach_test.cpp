@@ -180,7 +180,8 @@ void expectLightPathsKept(const std::string& name, size_t rays) {
            static_cast<double>(scene.patches.size() - 1)));
   EXPECT_TRUE(missed.empty()) << missed.size() << " pairs light reaches were culled, e.g. "
                               << missed.begin()->first << " " << missed.begin()->second;
-  // The check has something to find: most rays land on a front, and the cull drops most pairs.
+  // The check has something to find: most rays land on a front, and the cull drops more than
+  // half of all pairs.
   EXPECT_GT(frontHits, rays / 2);
   EXPECT_LT(reach.countPairs(), scene.patches.size() * (scene.patches.size() - 1) / 4);
 }
