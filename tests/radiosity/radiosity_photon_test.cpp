@@ -22,6 +22,7 @@
 #include "radiosity/ray_visibility.h"
 #include "raycast/embree_scene.h"
 #include "scene/contact_split.h"
+#include "support/shared_levels.h"
 
 namespace gv {
 namespace {
@@ -102,10 +103,6 @@ TEST(PhotonReferenceTest, FurnaceGivesEOverOneMinusRho) {
 Scene splitAtContacts(Scene scene) {
   splitPatchesAtContacts(scene);
   return scene;
-}
-
-std::string levelPath(const std::string& name) {
-  return std::string(GV_SHARED_DATA_DIR) + "/levels/" + name + ".obj";
 }
 
 /// The patches of a shared level whose boxes meet `box`, split at their contacts as the
@@ -196,7 +193,7 @@ TEST(RadiosityPhotonTest, CeilingOverALampSeesTheDarkTopsOfPillarsNotTheirMeans)
   // over light tracing; the source-consistency check (RadiosityOptions::sourceEpsilon) brings it
   // to ~16 % at `high`. The 25 % bound is a ratchet over today's error, not a derived bound:
   // it fails without the check (76 %) and at sourceEpsilon 0.1 (36 %).
-  const std::string path = levelPath("lit-doom-fd2-map03");
+  const std::string path = test::sharedLevelPath("lit-doom-fd2-map03");
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
   Scene room = cutLevel(path, {{-43, 5, -16}, {-27, 13, 17}}, "light_s84_0");
   ASSERT_EQ(room.emitterCount(), 1u);
@@ -242,7 +239,7 @@ TEST(RadiosityPhotonTest, TapsReadTheLeavesThatRefinementCutLaterNotTheirMean) {
   // a gather of the solution's own leaves by cosine-weighted rays (independent visibility, no
   // links), B − E = ρ · mean B(hit leaf). The factor-2 bound is loose on purpose: the gather
   // has ~5 % noise and the solver's links their own sampling error, while the defect is 14x.
-  const std::string path = levelPath("lit-q3-dm4ish");
+  const std::string path = test::sharedLevelPath("lit-q3-dm4ish");
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not present";
   const Scene cut = cutLevel(path, {{-2, -30, -14}, {30, 5, 8}});
   const EmbreeScene bvh(cut);

@@ -12,6 +12,7 @@
 
 #include "bsp/hidden_faces.h"
 #include "input/load_scene.h"
+#include "support/shared_levels.h"
 #include "visibility/convex_merge.h"
 
 namespace gv {
@@ -116,7 +117,7 @@ TEST(PortalJoin, EveryPieceOfARealLevelStaysInsideAPortalBetweenItsCells) {
   // cell merged from many leaves, whose lists of portals the join renumbers.
   size_t leafPieces = 0;
   for (const char* name : {"q3-oa_ctf2", "doom-fd2-map01"}) {
-    const std::string level = std::string(GV_SHARED_DATA_DIR) + "/levels/" + name + ".obj";
+    const std::string level = test::sharedLevelPath(name);
     if (!std::filesystem::exists(level)) GTEST_SKIP() << level << " not present";
     const Scene scene = removeHiddenFaces(loadScene(level));
     Subdivision merged = mergeConvexCells(scene, buildVisibilitySubdivision(scene, {}));
