@@ -4,7 +4,7 @@
 
 PACKAGES := cmake g++ make libgtest-dev libbenchmark-dev libtinyobjloader-dev libcli11-dev \
             nlohmann-json3-dev libfmt-dev libcgal-dev libembree-dev libtbb-dev libpng-dev \
-            libassimp-dev nodejs chromium
+            libassimp-dev libjemalloc-dev pkg-config nodejs chromium
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 BUILD := build
 BUILD_ASAN := build-asan
