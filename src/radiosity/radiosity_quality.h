@@ -42,15 +42,17 @@ struct RadiosityQualityLevel {
 
 /// The levels, in order, chosen from a grid of (epsilon, relativeEpsilon) measured against light
 /// tracing (docs/BENCHMARKS.md). High is the CLI's default: on the default office per-patch RMS
-/// 1.6 % against 2·10^7 photons (2.0 % against 3.2·10^7, which resolve three over-lit crevices),
-/// mean bias -0.1 %, in under 3 s on two cores (`blockers`), a fifth of Max's time. Max
-/// is RadiosityOptions{}'s setting, the one the tests and earlier figures use.
+/// 1.83 % against 3.2·10^7 photons, mean bias -0.02 %, in 2.0-2.5 s on two cores (`blockers`),
+/// a fifth of Max's time. Its relativeEpsilon was 0.1 until session 31: 2.00 % RMS, three
+/// over-lit crevices carrying most of it, 10-15 % faster; the faster allocator
+/// (src/cli/allocator.cpp) paid for the change. Max is RadiosityOptions{}'s setting, the one the
+/// tests and earlier figures use.
 inline constexpr std::array<RadiosityQualityLevel, 5> kRadiosityQualityLevels{{
     {RadiosityQuality::Draft, "draft", 1e-3, 0.1, 1e-2, 2, "a preview"},
     {RadiosityQuality::Low, "low", 3e-4, 0.05, 1e-2, 2, "L2 of B-Ke ~1-1.5 %"},
     {RadiosityQuality::Medium, "medium", 1e-4, 0.05, 1e-2, 2, "L2 ~0.5-1 %"},
-    {RadiosityQuality::High, "high", 5e-5, 0.1, 1e-2, 2,
-     "L2 ~0.4-0.7 %, per-patch RMS ~1.6-2.2 %; real levels ~2-3.5 %"},
+    {RadiosityQuality::High, "high", 5e-5, 0.05, 1e-2, 2,
+     "L2 ~0.4-0.6 %, per-patch RMS ~1.3-1.8 %, 2.7 % on the furnished room; real levels ~1.6-3.5 %"},
     {RadiosityQuality::Max, "max", 2e-5, 0.01, 1e-3, 0,
      "the reference: a link per pair, no clusters; ~3-5x high's time, quadratic in patches"},
 }};
