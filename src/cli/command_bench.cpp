@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/output_files.h"
 #include "cli/scene_input.h"
+#include "cli/thread_limit.h"
 #include "generators/office.h"
 #include "quake/map_to_scene.h"
 #include "util/input_error.h"
@@ -151,6 +152,7 @@ Action addBenchCommand(CLI::App& app) {
                   "<!-- bench:end -->, appended if missing) gets the table, machine and date");
   cmd->add_flag("--json", s->json, "Print the results as JSON on stdout instead of the table");
   return [s, mapsOption, levelsOption] {
+    const ThreadLimit threadLimit(s->options.threads);
     std::vector<BenchRow> rows;
     std::vector<size_t> sweep = s->officePatches;
     if (sweep.empty())

@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "cli/output_files.h"
 #include "cli/scene_input.h"
+#include "cli/thread_limit.h"
 #include "radiosity/blocker_visibility.h"
 #include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/radiosity_io.h"
@@ -157,6 +158,7 @@ Action addRadiosityCommand(CLI::App& app) {
   cmd->add_flag("--no-pictures", s->noPictures,
                 "Do not write render.png, mesh.png, links_visible.png, links_partial.png");
   return [s, coverage, epsilon, relativeEpsilon, clusterSamples] {
+    const ThreadLimit threadLimit(s->options.threads);
     const auto start = Clock::now();
     // The quality's settings, then an explicit --epsilon, --relative-epsilon (with the default
     // quality's other settings) or --cluster-samples (with the chosen quality's) over them: a

@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/output_files.h"
 #include "cli/scene_input.h"
+#include "cli/thread_limit.h"
 #include "scene/scene_io.h"
 #include "util/input_error.h"
 #include "util/progress_bar.h"
@@ -81,6 +82,7 @@ Action addVisCommand(CLI::App& app) {
                 "`radiosity` does (scene/contact_split.h): more patches, much shorter blocker "
                 "lists, and the same patches as a radiosity run");
   return [s, coverage] {
+    const ThreadLimit threadLimit(s->propagation.threads);
     const Scene scene = loadPipelineScene(s->scene, {s->contactSplit, s->keepHidden});
     for (const std::string& w : scene.report.warnings) fmt::print(stderr, "warning: {}\n", w);
     ProgressBar bspBar("BSP");
