@@ -52,7 +52,7 @@ inline constexpr std::array<RadiosityQualityLevel, 5> kRadiosityQualityLevels{{
     {RadiosityQuality::Low, "low", 3e-4, 0.05, 1e-2, 2, "L2 of B-Ke ~1-1.5 %"},
     {RadiosityQuality::Medium, "medium", 1e-4, 0.05, 1e-2, 2, "L2 ~0.5-1 %"},
     {RadiosityQuality::High, "high", 5e-5, 0.05, 1e-2, 2,
-     "L2 ~0.4-0.6 %, per-patch RMS ~1.3-2.7 %; real levels ~1.6-3.5 %"},
+     "L2 ~0.4-0.6 %, per-patch RMS ~1.3-2.7 %; real levels ~1.2-3.5 %"},
     {RadiosityQuality::Max, "max", 2e-5, 0.01, 1e-3, 0,
      "the reference: a link per pair, no clusters; ~3-5x high's time, quadratic in patches"},
 }};
