@@ -1,0 +1,27 @@
+#!/bin/sh
+# The project's own test set of real levels that nobody here modelled (issue #17): 12 Freedoom
+# sector levels and 14 OpenArena arena levels, plain and lit, converted from Debian's game data
+# by wad_to_obj.py and q3bsp_to_obj.py into OUTDIR (default /tmp/gv-test-levels). The files are
+# derived game data: they are made here, not kept in the repository.
+#   scripts/make-test-levels.sh [OUTDIR]
+#   globalvis bench --no-maps --no-offices --levels OUTDIR          # vis, verify, excess
+#   globalvis bench --no-maps --no-offices --levels OUTDIR --radiosity   # and the lit variants
+set -e
+here=$(cd "$(dirname "$0")" && pwd)
+out=${1:-/tmp/gv-test-levels}
+wads=/usr/share/games/doom
+oa=/usr/share/games/openarena/baseoa
+# Debian packages: freedoom (0.12.1), openarena-081-maps, openarena-oacmp1.
+for f in $wads/freedoom1.wad $wads/freedoom2.wad $oa/pak1-maps.pk3 $oa/z_oacmp-volume1-v3.pk3; do
+  [ -f "$f" ] || { echo "missing $f: install the Debian packages freedoom, openarena-081-maps and openarena-oacmp1" >&2; exit 1; }
+done
+mkdir -p "$out"
+python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M1 E1M4 E1M7 E2M1 E3M4 E4M1 -o "$out" --both
+python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP02 MAP05 MAP07 MAP10 MAP15 MAP20 -o "$out" --both
+for m in oa_dm1 oa_dm3 oa_dm4 oa_dm5 oa_dm7 oa_ctf4ish aggressor kaos slimefac hydronex oa_bases3 q3dm6ish; do
+  python3 "$here/q3bsp_to_obj.py" "$oa/pak1-maps.pk3:maps/$m.bsp" -o "$out" --name "q3-$m" --both
+done
+for m in oacmpdm1 oacmpdm3; do
+  python3 "$here/q3bsp_to_obj.py" "$oa/z_oacmp-volume1-v3.pk3:maps/$m.bsp" -o "$out" --name "q3-$m" --both
+done
+echo "wrote $(ls "$out"/*.obj | wc -l) OBJ files to $out"
