@@ -141,6 +141,63 @@ TEST(ThinWallSlivers, WedgeOfAirAtASolidsCornerIsListedWithTheRoomBeyond) {
   EXPECT_GT(g.stats.thinWallSlivers, 0u);
 }
 
+TEST(ThinWallSlivers, WallUnderAFloorsEdgeIsListedAcrossTheFloorIntoACellWithAPatchInside) {
+  // Side view (x across, 0..6): two solids under a room's floor z = 0, E = [-3, 0] and D = [0, 2]
+  // in y, both 2 deep. S is E's face y = 0, facing into D (D has no face there); D's top W is the
+  // room's floor over 0 < y < 2. A block hangs in the room over W, left inside the room's cell by
+  // the stop rule; solid walls 1 thick close everything. A ray leaving S just under its top edge
+  // crosses W from behind within the contact distance of its start and meets the room's far wall
+  // (q3-oacmpdm1: 1 ray in 10^6): the pair must be listed, though that cell has a patch inside.
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{14});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  const auto s = static_cast<uint32_t>(scene.patches.size());
+  b.addAxisRect(1, true, {0, 0, -2}, {6, 0, 0}, m);               // S
+  b.addBox({0, -3, -2}, {6, 0, 0}, m, kBoxAllFaces & ~kBoxMaxY);  // E's other faces
+  const auto w = static_cast<uint32_t>(scene.patches.size());
+  b.addAxisRect(2, true, {0, 0, 0}, {6, 2, 0}, m);                           // W
+  b.addBox({0, 0, -2}, {6, 2, 0}, m, kBoxAllFaces & ~kBoxMinY & ~kBoxMaxZ);  // D's other faces
+  b.addBox({0, 2, -2}, {6, 10, 0}, m);                                       // the rest
+  b.addBox({2.8, 0.8, 4.8}, {3.2, 1.2, 5.2}, m);                             // the block
+  b.addBox({-1, -4, -3}, {0, 11, 7}, m);                                     // the walls
+  b.addBox({6, -4, -3}, {7, 11, 7}, m);
+  b.addBox({0, -4, -3}, {6, -3, 7}, m);
+  b.addBox({0, -3, -3}, {6, 10, -2}, m);
+  b.addBox({0, -3, 6}, {6, 10, 7}, m);
+  const auto far = static_cast<uint32_t>(scene.patches.size());
+  b.addAxisRect(1, false, {0, 10, -3}, {6, 10, 7}, m);  // the far wall
+  b.addBox({0, 10, -3}, {6, 11, 7}, m, kBoxAllFaces & ~kBoxMinY);
+
+  // The witness, checked by the brute-force ray caster: W from behind within the contact
+  // distance, then the far wall from the front.
+  const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
+  const Vec3 origin{2, 0, -0.3 * contact};
+  const Vec3 dir = normalize(Vec3{0.1, 1, 0.5});
+  const auto first = test::firstHit(scene, origin, dir, 0, 1e9, s);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->patch, w);
+  EXPECT_FALSE(first->front);
+  EXPECT_LT(first->t, contact);
+  const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->patch, far);
+  EXPECT_TRUE(next->front);
+
+  BspOptions bsp;
+  bsp.minCoverage = 0.2;
+  const Subdivision sub = buildSubdivision(scene, bsp);
+  // The cell above W holds a patch inside it (else this is the case of the tests above).
+  bool interiorAboveW = false;
+  for (const Cell& cell : sub.cells)
+    if (cell.parts.empty() && !cell.interiorPatches.empty() &&
+        std::binary_search(cell.patches.begin(), cell.patches.end(), w) &&
+        cell.shape.centroid().z > 0)
+      interiorAboveW = true;
+  ASSERT_TRUE(interiorAboveW);
+  const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
+  EXPECT_TRUE(listed(g, s, far));
+}
+
 TEST(ThinWallSlivers, ALedgesCornerWithAnOpeningBesideItAddsNothing) {
   // A room [0, 8]^3 with a ledge box [3, 5] x [6, 8] x [4, 5] against its wall y = 8; the wall is
   // cut around the ledge (below z = 4, beside the ledge, above it). A ray from the wall beside the
