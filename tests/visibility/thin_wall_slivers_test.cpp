@@ -48,6 +48,23 @@ bool listed(const VisibilityGraph& g, uint32_t a, uint32_t b) {
                      [&](const Interaction& in) { return in.s == s && in.r == r; });
 }
 
+/// Checks a witness ray with the brute-force ray caster: leaving patch `from`, its first hit is
+/// `wall`, within the contact distance of its start, and past it the ray meets `beyond` from the
+/// front. `wallFront` (if given) receives whether it met `wall` from the front.
+void expectContactWitness(const Scene& scene, const Vec3& origin, const Vec3& dir, uint32_t from,
+                          uint32_t wall, uint32_t beyond, bool* wallFront = nullptr) {
+  const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
+  const auto first = test::firstHit(scene, origin, dir, 0, 1e9, from);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->patch, wall);
+  EXPECT_LT(first->t, contact);
+  if (wallFront) *wallFront = first->front;
+  const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
+  ASSERT_TRUE(next);
+  EXPECT_EQ(next->patch, beyond);
+  EXPECT_TRUE(next->front);
+}
+
 TEST(ThinWallSlivers, FloorEndingAgainstAOneSidedWallIsListedWithTheRoomBehind) {
   const TwoRooms rooms = twoRooms(0);
   const Scene& scene = rooms.scene;
@@ -57,14 +74,8 @@ TEST(ThinWallSlivers, FloorEndingAgainstAOneSidedWallIsListedWithTheRoomBehind) 
   // of its start, and past it the ray reaches B's far wall with nothing in between.
   const Vec3 origin{4 - 0.3 * contact, 2, 0};
   const Vec3 dir = normalize(Vec3{1, 0, 0.5});
-  const auto first = test::firstHit(scene, origin, dir, 0, 1e9, rooms.floorA);
-  ASSERT_TRUE(first);
-  EXPECT_EQ(first->patch, rooms.floorA + 5);  // A's wall at x = 4
-  EXPECT_LT(first->t, contact);
-  const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
-  ASSERT_TRUE(next);
-  EXPECT_EQ(next->patch, rooms.farWallB);
-  EXPECT_TRUE(next->front);
+  // A's wall at x = 4 first.
+  expectContactWitness(scene, origin, dir, rooms.floorA, rooms.floorA + 5, rooms.farWallB);
 
   const Subdivision sub = buildSubdivision(scene);
   const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
@@ -173,15 +184,9 @@ TEST(ThinWallSlivers, WallUnderAFloorsEdgeIsListedAcrossTheFloorIntoACellWithAPa
   const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
   const Vec3 origin{2, 0, -0.3 * contact};
   const Vec3 dir = normalize(Vec3{0.1, 1, 0.5});
-  const auto first = test::firstHit(scene, origin, dir, 0, 1e9, s);
-  ASSERT_TRUE(first);
-  EXPECT_EQ(first->patch, w);
-  EXPECT_FALSE(first->front);
-  EXPECT_LT(first->t, contact);
-  const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
-  ASSERT_TRUE(next);
-  EXPECT_EQ(next->patch, far);
-  EXPECT_TRUE(next->front);
+  bool wFront = true;
+  expectContactWitness(scene, origin, dir, s, w, far, &wFront);
+  EXPECT_FALSE(wFront);
 
   BspOptions bsp;
   bsp.minCoverage = 0.2;
@@ -253,14 +258,7 @@ TEST(ThinWallSlivers, OutsideSliversListARoomReachedThroughTheOutside) {
   const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
   const Vec3 origin{2, 4 - 0.3 * contact, 0};
   const Vec3 dir = normalize(Vec3{0, 1, 2});
-  const auto first = test::firstHit(scene, origin, dir, 0, 1e9, floorA);
-  ASSERT_TRUE(first);
-  EXPECT_EQ(first->patch, northA);
-  EXPECT_LT(first->t, contact);
-  const auto next = test::firstHit(scene, origin, dir, first->t + 1e-9, 1e9, first->patch);
-  ASSERT_TRUE(next);
-  EXPECT_EQ(next->patch, farB);
-  EXPECT_TRUE(next->front);
+  expectContactWitness(scene, origin, dir, floorA, northA, farB);
 
   // Split on every plane: the outside's leaf behind A's wall then ends at the plane of A's
   // ceiling, and the walk must go on through the opening above it into the next leaf.
