@@ -120,12 +120,26 @@ void PortalSequenceStabber::pop() {
 
 // One LP row per edge a→b of the loop: side(π, e) >= t, i.e. -(d·m_e + m·d_e) + t <= 0, with
 // d_pivot = (1 - sum_{j != pivot} n_j d_j) / n_pivot substituted, scaled to a unit row.
-void PortalSequenceStabber::appendRows(std::span<const Vec3> loop) {
+//
+// The rows say "crosses a convex polygon" only for edges lying in the polygon's plane. A loop
+// whose vertices stray from its plane (within the importer's planarity tolerance, or by a clip
+// point's rounding) can have a short edge that leaves the plane steeply, and that edge's row
+// then cuts away lines through the polygon's middle: q3-oacmpdm3's 45° bevel patch 3130 has two
+// corners 1e-6 apart, one of them 7e-7 off its plane, and its row proved the sequence of a real
+// sightline blocked (a missed pair). So the loop is projected onto the plane of `planeNormal`
+// through its mean offset first: every edge then lies in that plane, and no vertex moves by more
+// than the loop's own non-planarity.
+void PortalSequenceStabber::appendRows(std::span<const Vec3> loop, const Vec3& planeNormal) {
   const size_t n = loop.size();
+  double offset = 0;
+  for (const Vec3& v : loop) offset += dot(planeNormal, v);
+  offset /= static_cast<double>(n);
+  projected_.clear();
+  for (const Vec3& v : loop) projected_.push_back(v - planeNormal * (dot(planeNormal, v) - offset));
   const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
   const double np = normal_[pivot_];
   for (size_t i = 0; i < n; ++i) {
-    const Vec3 a = toLocal(loop[i]), b = toLocal(loop[(i + 1) % n]);
+    const Vec3 a = toLocal(projected_[i]), b = toLocal(projected_[(i + 1) % n]);
     const Vec3 de = b - a, me = cross(a, b);
     LpConstraint r;
     // d·m_e = sum_{j != p} d_j (me_j - n_j me_p / n_p) + me_p / n_p
@@ -226,7 +240,7 @@ StabbingResult PortalSequenceStabber::pushFirst(Level& level, std::span<const Ve
   }
   level.source = level.clipped;
   rows_.clear();
-  if (level.lpValid) appendRows(level.clipped);
+  if (level.lpValid) appendRows(level.clipped, normal_);
   level.constraintEnd = rows_.size();
   std::optional<Segment> w;
   if (level.lpValid) {
@@ -374,9 +388,9 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   }
   const size_t rowsBefore = rows_.size();
   if (level.lpValid) {
-    if (!degenerate && level.clipped.size() >= 3) appendRows(level.clipped);
+    if (!degenerate && level.clipped.size() >= 3) appendRows(level.clipped, level.planeNormal);
     // A shrunk first portal tightens the LP too (the line crosses the first plane inside it).
-    if (level.source != prev.source && level.source.size() >= 3) appendRows(level.source);
+    if (level.source != prev.source && level.source.size() >= 3) appendRows(level.source, normal_);
   }
   level.constraintEnd = rows_.size();
   level.optimum = prev.optimum;

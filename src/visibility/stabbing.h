@@ -191,7 +191,7 @@ class PortalSequenceStabber {
   void lowerLazily(Level& level, size_t firstRow) const;
   std::optional<Segment> cheapWitness(const Level& level);
   StabbingResult accept(Level& level, std::optional<Segment> witness);
-  void appendRows(std::span<const Vec3> loop);
+  void appendRows(std::span<const Vec3> loop, const Vec3& planeNormal);
   std::optional<Segment> findWitness(const LpVector& x);
   bool confirms(const Segment& line) const;
   std::optional<Segment> alongDirection(const Vec3& d, const Level* extra);
@@ -216,6 +216,7 @@ class PortalSequenceStabber {
   bool firstDegenerate_ = false;
   double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
+  Winding projected_;  ///< appendRows' loop, projected onto its plane
   std::vector<double> dist_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;

@@ -288,6 +288,33 @@ std::vector<Winding> randomChain(std::mt19937_64& rng, int length) {
   return seq;
 }
 
+TEST(StabbingDegenerate, AShortEdgeLeavingThePortalsPlaneCutsNoLineThroughIt) {
+  // q3-oacmpdm3's patch 3130, a 45° bevel (normal (-1, 0, 1) / sqrt 2) whose corner at
+  // (42, 36, 16.125) came out of the importer twice, 1e-6 apart along x: the edge between the two
+  // copies leaves the bevel's plane at 45°. Below the bevel, two openings of the floors under it,
+  // crossed downwards: the first three portals of a real sightline that `vis` missed.
+  const Tolerance levelTol{118.028};  // the level's bounding-box diagonal
+  const Winding clean{{42, 36, 16.125}, {42, 34, 16.125}, {42.125, 34.125, 16.25},
+                      {42.125, 35.875, 16.25}};
+  Winding twinned = clean;
+  twinned.insert(twinned.begin(), Vec3{42.000001, 36, 16.125});
+  twinned[2] = {42.125, 34.125001, 16.25};
+  const std::vector<Winding> below{rectZ(30, 44, 20, 34, 16, true),
+                                   rectZ(30, 44, 20, 34, 14, true)};
+  // The line `verify` found, from the bevel to a wall 24 units away, stabs the clean chain: the
+  // chain has sightlines, and the twinned corner changes the bevel by 1e-6 only.
+  const Vec3 from{42.032225, 34.040358, 16.157225}, to{18, 29.529463, 6.424838};
+  std::vector<Winding> cleanChain{clean};
+  cleanChain.insert(cleanChain.end(), below.begin(), below.end());
+  ASSERT_TRUE(lineStabs(from, to - from, cleanChain));
+  std::vector<Winding> twinnedChain{twinned};
+  twinnedChain.insert(twinnedChain.end(), below.begin(), below.end());
+  for (const StabbingOptions& o : {kBoth, kClipOnly, kLpOnly}) {
+    EXPECT_NE(testPortalSequence(cleanChain, levelTol, o), StabbingResult::Blocked);
+    EXPECT_NE(testPortalSequence(twinnedChain, levelTol, o), StabbingResult::Blocked);
+  }
+}
+
 TEST(StabbingRandom, NeverBlockedWhenSamplingFindsALine) {
   std::mt19937_64 rng(20261124);
   std::uniform_real_distribution<double> u(-1, 1);
