@@ -17,6 +17,11 @@ constexpr int kDim = 6;
 constexpr int kT = 5;
 // Relaxation of the LP's rows (in units of the unit-scaled rows) for a retry of a degenerate LP.
 constexpr double kLpTieBreak = 1e-9;
+// An edge rising out of its loop's plane by more than this per unit of length gets no LP row
+// (appendRows). Rounding tilts an in-plane edge by about 1e-16 over its length relative to the
+// scene; only edges a thousand times shorter than their endpoints' distance from the plane are
+// dropped: the corners a hair apart that off-plane input leaves.
+constexpr double kMaxEdgeSlope = 1e-3;
 
 // `newell` is the loop's Newell normal (computed once per push by the caller).
 bool isDegenerate(std::span<const Vec3> loop, const Vec3& newell, const Tolerance& tol) {
@@ -120,27 +125,27 @@ void PortalSequenceStabber::pop() {
 
 // One LP row per edge a→b of the loop: side(π, e) >= t, i.e. -(d·m_e + m·d_e) + t <= 0, with
 // d_pivot = (1 - sum_{j != pivot} n_j d_j) / n_pivot substituted, scaled to a unit row.
-//
-// The rows say "crosses a convex polygon" only for edges lying in the polygon's plane. A loop
-// whose vertices stray from its plane (within the importer's planarity tolerance, or by a clip
-// point's rounding) can have a short edge that leaves the plane steeply, and that edge's row
-// then cuts away lines through the polygon's middle: q3-oacmpdm3's 45° bevel patch 3130 has two
-// corners 1e-6 apart, one of them 7e-7 off its plane, and its row proved the sequence of a real
-// sightline blocked (a missed pair). So the loop is projected onto the plane of `planeNormal`
-// through its mean offset first: every edge then lies in that plane, and no vertex moves by more
-// than the loop's own non-planarity.
 void PortalSequenceStabber::appendRows(std::span<const Vec3> loop, const Vec3& planeNormal) {
   const size_t n = loop.size();
-  double offset = 0;
-  for (const Vec3& v : loop) offset += dot(planeNormal, v);
-  offset /= static_cast<double>(n);
-  projected_.clear();
-  for (const Vec3& v : loop) projected_.push_back(v - planeNormal * (dot(planeNormal, v) - offset));
   const int j0 = (pivot_ + 1) % 3, j1 = (pivot_ + 2) % 3;
   const double np = normal_[pivot_];
   for (size_t i = 0; i < n; ++i) {
-    const Vec3 a = toLocal(projected_[i]), b = toLocal(projected_[(i + 1) % n]);
+    const Vec3 a = toLocal(loop[i]), b = toLocal(loop[(i + 1) % n]);
     const Vec3 de = b - a, me = cross(a, b);
+    // A (near-)repeated vertex, e.g. two rounded copies of one clip point, is no edge: its
+    // direction is rounding noise, and once normalised below it would cut away real lines (a
+    // false "blocked", found by `globalvis verify` on the office). Lengths here are in units of
+    // the scene size.
+    if (!(length(de) > kRelativeLengthEpsilon)) continue;
+    // Nor is an edge that leaves the loop's plane steeply: the rows say "crosses a convex
+    // polygon" only for edges lying in its plane. Two copies of one corner a hair apart, one of
+    // them a hair off the plane (within the importer's planarity tolerance), make such an edge,
+    // and its row cuts away lines through the polygon's middle: q3-oacmpdm3's 45° bevel patch
+    // 3130 has corners 1e-6 apart, one 7e-7 off its plane, and that row proved a real
+    // sightline's sequence blocked (a missed pair). Dropping a row only enlarges the feasible
+    // set, so skipping such edges stays conservative, as above; the rows of edges in the plane
+    // (every edge of a BSP portal, but for rounding) are kept as they are.
+    if (std::abs(dot(de, planeNormal)) > kMaxEdgeSlope * length(de)) continue;
     LpConstraint r;
     // d·m_e = sum_{j != p} d_j (me_j - n_j me_p / n_p) + me_p / n_p
     r.a[0] = -(me[j0] - normal_[j0] * me[pivot_] / np);
@@ -153,12 +158,6 @@ void PortalSequenceStabber::appendRows(std::span<const Vec3> loop, const Vec3& p
     // Scale by the edge's own Plücker size so that every row measures distance alike (t is then
     // "how far the line passes inside the edge", comparable across edges).
     const double edgeSize = std::sqrt(lengthSquared(de) + lengthSquared(me));
-    // A (near-)repeated vertex, e.g. two rounded copies of one clip point, is no edge: its
-    // direction is rounding noise, and once normalised below it would cut away real lines (a
-    // false "blocked", found by `globalvis verify` on the office). Dropping a constraint only
-    // enlarges the feasible set, so skipping such edges stays conservative. Lengths here are in
-    // units of the scene size.
-    if (!(length(de) > kRelativeLengthEpsilon)) continue;
     double norm = 0;
     for (int j = 0; j < kT; ++j) {
       r.a[j] /= edgeSize;

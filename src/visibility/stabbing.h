@@ -216,7 +216,6 @@ class PortalSequenceStabber {
   bool firstDegenerate_ = false;
   double firstMinOffset_ = 0;  // min of normal_·x over the first portal (its slab's back)
   Winding scratch_;
-  Winding projected_;  ///< appendRows' loop, projected onto its plane
   std::vector<double> dist_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;
