@@ -294,8 +294,8 @@ TEST(StabbingDegenerate, AShortEdgeLeavingThePortalsPlaneCutsNoLineThroughIt) {
   // copies leaves the bevel's plane at 45°. Below the bevel, two openings of the floors under it,
   // crossed downwards: the first three portals of a real sightline that `vis` missed.
   const Tolerance levelTol{118.028};  // the level's bounding-box diagonal
-  const Winding clean{{42, 36, 16.125}, {42, 34, 16.125}, {42.125, 34.125, 16.25},
-                      {42.125, 35.875, 16.25}};
+  const Winding clean{
+      {42, 36, 16.125}, {42, 34, 16.125}, {42.125, 34.125, 16.25}, {42.125, 35.875, 16.25}};
   Winding twinned = clean;
   twinned.insert(twinned.begin(), Vec3{42.000001, 36, 16.125});
   twinned[2] = {42.125, 34.125001, 16.25};
