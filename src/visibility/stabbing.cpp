@@ -136,7 +136,8 @@ void PortalSequenceStabber::appendRows(std::span<const Vec3> loop, const Vec3& p
     // direction is rounding noise, and once normalised below it would cut away real lines (a
     // false "blocked", found by `globalvis verify` on the office). Lengths here are in units of
     // the scene size.
-    if (!(length(de) > kRelativeLengthEpsilon)) continue;
+    const double length2 = lengthSquared(de);
+    if (!(length2 > kRelativeLengthEpsilon * kRelativeLengthEpsilon)) continue;
     // Nor is an edge that leaves the loop's plane steeply: the rows say "crosses a convex
     // polygon" only for edges lying in its plane. Two copies of one corner a hair apart, one of
     // them a hair off the plane (within the importer's planarity tolerance), make such an edge,
@@ -145,7 +146,8 @@ void PortalSequenceStabber::appendRows(std::span<const Vec3> loop, const Vec3& p
     // sightline's sequence blocked (a missed pair). Dropping a row only enlarges the feasible
     // set, so skipping such edges stays conservative, as above; the rows of edges in the plane
     // (every edge of a BSP portal, but for rounding) are kept as they are.
-    if (std::abs(dot(de, planeNormal)) > kMaxEdgeSlope * length(de)) continue;
+    const double rise = dot(de, planeNormal);
+    if (rise * rise > kMaxEdgeSlope * kMaxEdgeSlope * length2) continue;
     LpConstraint r;
     // d·m_e = sum_{j != p} d_j (me_j - n_j me_p / n_p) + me_p / n_p
     r.a[0] = -(me[j0] - normal_[j0] * me[pivot_] / np);
@@ -157,7 +159,7 @@ void PortalSequenceStabber::appendRows(std::span<const Vec3> loop, const Vec3& p
     r.b = me[pivot_] / np;
     // Scale by the edge's own Plücker size so that every row measures distance alike (t is then
     // "how far the line passes inside the edge", comparable across edges).
-    const double edgeSize = std::sqrt(lengthSquared(de) + lengthSquared(me));
+    const double edgeSize = std::sqrt(length2 + lengthSquared(me));
     double norm = 0;
     for (int j = 0; j < kT; ++j) {
       r.a[j] /= edgeSize;
