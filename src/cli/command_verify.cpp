@@ -40,6 +40,12 @@ Action addVerifyCommand(CLI::App& app) {
                   "tolerance)")
       ->capture_default_str()
       ->check(CLI::Range(kVerifyContactDistance, 1e-3));
+  cmd->add_option("--unlisted-pairs", s->options.unlistedPairs,
+                  "Pairs not listed, drawn uniformly, each tried with up to 16 front-to-front "
+                  "segments: a free one is a missing pair (finds small patches' misses, which "
+                  "rays seldom reach)")
+      ->capture_default_str()
+      ->check(CLI::Range(uint64_t{0}, uint64_t{1'000'000'000}));
   cmd->add_flag("--json", s->json, "Print the report as JSON on stdout");
   return [s] {
     const std::filesystem::path dir(s->dir);
@@ -61,6 +67,9 @@ Action addVerifyCommand(CLI::App& app) {
           {"contact_first_hits", v.contactFirstHits},
           {"contact_rays", v.contactRays},
           {"invalid_pairs", v.invalidPairs},
+          {"unlisted_pairs_drawn", v.unlistedDrawn},
+          {"unlisted_pairs_tried", v.unlistedTried},
+          {"missing_unlisted_pairs", v.missingUnlisted},
           {"tightness_pairs", v.tightnessPairs},
           {"excess_pairs", v.excess},
           {"excess", v.tightnessPairs ? double(v.excess) / double(v.tightnessPairs) : 0.0},
@@ -91,6 +100,11 @@ Action addVerifyCommand(CLI::App& app) {
           "(faces in contact; not violations): {}\n",
           v.contactRays);
     if (v.invalidPairs) fmt::print("pairs naming patches that do not exist: {}\n", v.invalidPairs);
+    if (v.unlistedDrawn)
+      fmt::print(
+          "unlisted pairs {} drawn ({} with a front-to-front segment, up to {} tried each): "
+          "with a free segment (missing) {}\n",
+          v.unlistedDrawn, v.unlistedTried, kUnlistedSegments, v.missingUnlisted);
     if (v.tightnessPairs)
       fmt::print(
           "tightness: {} of {} sampled listed pairs ({:.1f} %) have no free segment among {} "

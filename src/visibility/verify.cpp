@@ -191,6 +191,37 @@ VerifyReport verifyVisibility(const Scene& scene, const VisibilityGraph& graph,
     }
   }
 
+  // Unlisted pairs, drawn uniformly: up to kUnlistedSegments front-to-front segments each.
+  for (uint64_t i = 0; i < options.unlistedPairs; ++i) {
+    const uint32_t s = uint32_t(rng() % n), r = uint32_t(rng() % n);
+    if (s == r) continue;
+    const uint32_t a = std::min(s, r), b = std::max(s, r);
+    if (listed.count((uint64_t(a) << 32) | b)) continue;
+    ++report.unlistedDrawn;
+    const ConvexPolygon& sp = scene.patches[s].polygon;
+    const ConvexPolygon& rp = scene.patches[r].polygon;
+    if (inContact(sp, rp, contactTolerance)) continue;
+    bool tried = false;
+    for (int k = 0; k < kUnlistedSegments; ++k) {
+      const Vec3 p = pointOn(sp, rng), q = pointOn(rp, rng);
+      if (sp.plane.distance(q) <= eps || rp.plane.distance(p) <= eps) continue;
+      tried = true;
+      const Vec3 p1 = p + sp.normal() * offset, q1 = q + rp.normal() * offset;
+      if (rays.occluded(p1, q1, s, r)) continue;
+      // Free in single precision; in double, nothing may cross the segment between its ends'
+      // contact distances (a crossing within `eps` of a patch's edge counts).
+      const double tContact = offset / std::max(length(q - p), offset);
+      if (firstCrossingInDouble(scene, p, q - p, tContact, 1 - tContact, s, r, eps)) continue;
+      if (report.examples.size() < kVerifyExamples)
+        report.examples.push_back(fmt::format(
+            "pair ({}, {}) not listed: segment ({}, {}, {}) to ({}, {}, {}) meets nothing", a, b,
+            p.x, p.y, p.z, q.x, q.y, q.z));
+      ++report.missingUnlisted;
+      break;
+    }
+    report.unlistedTried += tried;
+  }
+
   if (graph.interactions.empty()) return report;
   // Tightness: a segment is free when the offset segment meets nothing (Embree) or what it
   // meets the segment between the sampled points does not cross (as above).

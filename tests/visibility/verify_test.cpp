@@ -89,6 +89,35 @@ struct GreyScene {
   }
 };
 
+TEST(VerifyChecks, UnlistedPairsWithAFreeSegmentAreMissingAndPairsBehindAWallAreNot) {
+  // Two squares facing each other across an empty gap (A below, B above), two more (C, D) with a
+  // wall W between them that also hides A from D and B from C. Visible pairs: (A, B), and W's
+  // front with B and D.
+  GreyScene g(8);
+  g.add({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});            // 0 A, facing up
+  g.add({{0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}});            // 1 B, facing down
+  g.add({{3, 0, 0}, {4, 0, 0}, {4, 1, 0}, {3, 1, 0}});            // 2 C, facing up
+  g.add({{3, 0, 2}, {3, 1, 2}, {4, 1, 2}, {4, 0, 2}});            // 3 D, facing down
+  g.add({{1.4, -1, 1}, {5.5, -1, 1}, {5.5, 2, 1}, {1.4, 2, 1}});  // 4 W, facing up
+  VerifyOptions o;
+  o.rays = 0;
+  o.segments = 0;
+  o.tightnessPairs = 0;
+  o.unlistedPairs = 2000;
+  VisibilityGraph graph;
+  graph.interactions = {{0, 1, {}}, {1, 4, {}}, {3, 4, {}}};
+  const VerifyReport clean = verifyVisibility(g.scene, graph, o);
+  EXPECT_TRUE(clean.ok()) << (clean.examples.empty() ? "" : clean.examples[0]);
+  EXPECT_GT(clean.unlistedDrawn, 500u);
+  EXPECT_GT(clean.unlistedTried, 200u);  // (2, 3), (0, 3) and (1, 2): facing, all blocked
+  EXPECT_EQ(clean.missingUnlisted, 0u);
+  // (A, B) left out: found.
+  graph.interactions.erase(graph.interactions.begin());
+  const VerifyReport missing = verifyVisibility(g.scene, graph, o);
+  EXPECT_GT(missing.missingUnlisted, 50u);
+  EXPECT_FALSE(missing.ok());
+}
+
 TEST(VerifyChecks, HitsOfTheOffsetSegmentThatTheSegmentItselfMissesAreNotViolations) {
   // Two floor quads facing up, the far one tilted up by 1e-7 (so they face each other at a
   // grazing angle), and a fence standing between them whose bottom edge is 1e-6 above the floor:
