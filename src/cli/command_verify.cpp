@@ -70,6 +70,7 @@ Action addVerifyCommand(CLI::App& app) {
           {"unlisted_pairs_drawn", v.unlistedDrawn},
           {"unlisted_pairs_tried", v.unlistedTried},
           {"missing_unlisted_pairs", v.missingUnlisted},
+          {"unlisted_pairs_through_cracks", v.unlistedThroughCracks},
           {"tightness_pairs", v.tightnessPairs},
           {"excess_pairs", v.excess},
           {"excess", v.tightnessPairs ? double(v.excess) / double(v.tightnessPairs) : 0.0},
@@ -105,6 +106,11 @@ Action addVerifyCommand(CLI::App& app) {
           "unlisted pairs {} drawn ({} with a front-to-front segment, up to {} tried each): "
           "with a free segment (missing) {}\n",
           v.unlistedDrawn, v.unlistedTried, kUnlistedSegments, v.missingUnlisted);
+    if (v.unlistedThroughCracks)
+      fmt::print(
+          "unlisted pairs free only through a gap narrower than {:g} of the diagonal beside a "
+          "patch's edge (cracks the tolerance policy closes; not violations): {}\n",
+          kVerifyContactDistance, v.unlistedThroughCracks);
     if (v.tightnessPairs)
       fmt::print(
           "tightness: {} of {} sampled listed pairs ({:.1f} %) have no free segment among {} "

@@ -68,6 +68,10 @@ struct VerifyReport {
   /// in double precision confirms it (a crossing within the length tolerance of a patch's edge
   /// counts as met: the contact rule's reading).
   uint64_t unlistedDrawn = 0, unlistedTried = 0, missingUnlisted = 0;
+  /// Unlisted pairs whose only free segments pass a patch's edge closer than
+  /// kVerifyContactDistance (a crack where two faces meet, closed by the tolerance policy):
+  /// counted to show them, not violations.
+  uint64_t unlistedThroughCracks = 0;
   /// Tightness: listed pairs sampled (uniformly among the listed ones) and, of them, those for
   /// which none of kTightnessSegments front-to-front segments is free: listed beyond what rays
   /// see. excess / tightnessPairs at most 0.5 means the list is at most about twice the visible
