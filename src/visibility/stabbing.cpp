@@ -18,9 +18,9 @@ constexpr int kT = 5;
 // Relaxation of the LP's rows (in units of the unit-scaled rows) for a retry of a degenerate LP.
 constexpr double kLpTieBreak = 1e-9;
 // An edge rising out of its loop's plane by more than this per unit of length gets no LP row
-// (appendRows). Rounding tilts an in-plane edge by about 1e-16 over its length relative to the
-// scene; only edges a thousand times shorter than their endpoints' distance from the plane are
-// dropped: the corners a hair apart that off-plane input leaves.
+// (appendRows). Rounding lifts an in-plane edge's end by about 1e-16 of the scene's size; only
+// edges shorter than a thousand times their rise out of the plane are dropped: the corners a
+// hair apart that off-plane input leaves.
 constexpr double kMaxEdgeSlope = 1e-3;
 
 // `newell` is the loop's Newell normal (computed once per push by the caller).
