@@ -66,7 +66,7 @@ struct VerifyReport {
   /// segment (tried), and those with a free one: missing pairs, found by segments rather than
   /// by rays. Free means Embree meets nothing between the offset ends and a scan of every patch
   /// in double precision confirms it (a crossing within the length tolerance of a patch's edge
-  /// counts as met: the contact rule's reading).
+  /// counts as met; see unlistedThroughCracks for those within the contact distance).
   uint64_t unlistedDrawn = 0, unlistedTried = 0, missingUnlisted = 0;
   /// Unlisted pairs whose only free segments pass a patch's edge closer than
   /// kVerifyContactDistance (a crack where two faces meet, closed by the tolerance policy):

@@ -4,10 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include "geometry/convex_polygon.h"
-#include "geometry/plucker.h"
 
 namespace gv {
 namespace {
