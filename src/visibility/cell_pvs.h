@@ -86,6 +86,9 @@ struct CellPvsResult {
   /// Tests made by target checks (CellPvsOptions::targetCheckRatio; a cell's ball of portals,
   /// then its portals), and the might-see entries they dropped.
   uint64_t targetTests = 0, targetCellsDropped = 0;
+  /// Plane tests made answering the branches a search left unexplored over its budget (the
+  /// cells a line through the branch's first portal may enter).
+  uint64_t overBudgetTests = 0;
   /// Stabbing tests by sequence length in portals (the paper's Fig. 13), index = length.
   std::vector<uint64_t> successesByLength, failuresByLength;
   /// Per directed portal (2i: portal i from back into front; 2i+1: the way back), the

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace gv {
@@ -49,6 +50,25 @@ class CellSet {
     return fresh != 0;
   }
   /// Whether this and `other` share a cell.
+  /// this = a minus b; true when something is left.
+  bool assignDifference(const CellSet& a, const CellSet& b) {
+    words_.resize(a.words_.size());
+    uint64_t any = 0;
+    for (size_t w = 0; w < words_.size(); ++w) any |= words_[w] = a.words_[w] & ~b.words_[w];
+    return any != 0;
+  }
+  /// Keeps the members that some set of `sets` holds too; true when something is left. Reads
+  /// only the words of `sets` where this set has members: cheap for a sparse set.
+  bool intersectWithUnion(std::span<const CellSet* const> sets) {
+    uint64_t any = 0;
+    for (size_t w = 0; w < words_.size(); ++w) {
+      if (!words_[w]) continue;
+      uint64_t u = 0;
+      for (const CellSet* s : sets) u |= s->words_[w];
+      any |= words_[w] &= u;
+    }
+    return any != 0;
+  }
   bool intersects(const CellSet& other) const {
     for (size_t w = 0; w < words_.size(); ++w)
       if (words_[w] & other.words_[w]) return true;
