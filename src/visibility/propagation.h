@@ -76,13 +76,21 @@ struct PropagationOptions {
   Clock::time_point deadline = Clock::time_point::max();
   /// What one search may test (0: no limit): portal sequences per directed portal of the cell
   /// search, stabbing tests per source patch of the patch searches. Past it, the branches the
-  /// search has not explored yet are answered untested with everything they might reach, and the
-  /// explored ones keep their answers: conservative either way (more listed, never less). They
+  /// search has not explored yet are answered without exploring them, with everything a line
+  /// through their first portal may reach (that portal tested, then its separating planes with
+  /// the source), and the explored ones keep their answers: conservative either way (more
+  /// listed, never less). They
   /// bound the time of the searches that fan out combinatorially on real levels. Counted in
   /// VisibilityStats::cellSearchesOverBudget / patchSearchesOverBudget. The patch searches'
   /// default follows the patch count (patchSequenceBudgetFor; VisibilityStats::patchBudget).
   uint64_t cellSequenceBudget = kDefaultCellSequenceBudget;
   uint64_t patchSequenceBudget = kAutoPatchSequenceBudget;
+  /// Over its budget a patch search answers a branch it has not explored with only the pieces
+  /// a line through the branch's portals may meet (not wholly behind one of the sequence's
+  /// separating planes); off, with every piece of every cell the branch might reach, and the
+  /// blocker stage alone drops the pairs hidden behind a blocker. Conservative either way; off
+  /// only to test the blocker stage on such pairs, or to measure what it saves.
+  bool patchBudgetAnswerByPlanes = true;
   /// The cell search's target checks (CellPvsOptions::targetCheckRatio; 0: none).
   double cellTargetChecks = kDefaultCellTargetChecks;
   /// Merge cells before searching (visibility/convex_merge.h: neighbours whose union is convex,

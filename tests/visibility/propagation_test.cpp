@@ -303,9 +303,12 @@ TEST(PropagationBudget, TheDefaultPatchBudgetFollowsThePatchCount) {
 /// The scene of the plate tests: a 0.2-wide source on the floor facing up (patch 0), the plate's
 /// pieces at half height facing down (patches 1..k, given as (low, high) corners at z = 1), the
 /// ceiling at z = 2 cut into 10 x 10 patches facing down (k + 1 + 10 i + j for column i, row j).
-/// The searches run with budgets of one test, so they answer with every patch they might reach
-/// and the blocker stage decides which ceiling patches are hidden. Returns the graph.
-VisibilityGraph plateVisibility(Scene& scene, std::initializer_list<std::pair<Vec3, Vec3>> plate) {
+/// The searches run with budgets of one test. With `byPlanes` off they answer with every patch
+/// they might reach and the blocker stage decides which ceiling patches are hidden; on (the
+/// default of `vis`), their answers already leave out the pieces behind the sequence's
+/// separating planes. Returns the graph.
+VisibilityGraph plateVisibility(Scene& scene, std::initializer_list<std::pair<Vec3, Vec3>> plate,
+                                bool byPlanes = false) {
   SceneBuilder b(scene, Tolerance{10});
   const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
   b.addAxisRect(2, true, {0.9, 0.9, 0}, {1.1, 1.1, 0}, m);
@@ -315,6 +318,7 @@ VisibilityGraph plateVisibility(Scene& scene, std::initializer_list<std::pair<Ve
       b.addAxisRect(2, false, {0.2 * i, 0.2 * j, 2}, {0.2 * (i + 1), 0.2 * (j + 1), 2}, m);
   PropagationOptions tight;
   tight.cellSequenceBudget = tight.patchSequenceBudget = 1;
+  tight.patchBudgetAnswerByPlanes = byPlanes;
   return computeVisibility(scene, buildSubdivision(scene), tight);
 }
 
@@ -386,6 +390,25 @@ TEST(PropagationBudget, ReceiversHiddenWholeBehindOnePlateAreDropped) {
           << "ceiling patch " << i << ", " << j;
     }
   EXPECT_GE(g.stats.pairsHiddenByOne, 64u);
+  expectDroppedCeilingPatchesBehindThePlate(scene, g, 1);
+}
+
+TEST(PropagationBudget, SearchesOverBudgetLeaveOutWhatTheirPlanesHide) {
+  // The plate of the test above, with the over-budget answers cut by the sequences' separating
+  // planes (PropagationOptions::patchBudgetAnswerByPlanes, the default): the same pairs listed,
+  // and the hidden ones no longer reach the blocker stage (measured: none of the 64 does; the
+  // bound fails if the answers list every piece they might reach, as above).
+  Scene scene;
+  const VisibilityGraph g = plateVisibility(scene, {{{0.5, 0.5, 1}, {1.5, 1.5, 1}}}, true);
+  const auto index = indexOf(g);
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) {
+      const bool inner = i > 0 && i < 9 && j > 0 && j < 9;
+      EXPECT_EQ(index.count({0, uint32_t(2 + 10 * i + j)}), inner ? 0u : 1u)
+          << "ceiling patch " << i << ", " << j;
+    }
+  EXPECT_GT(g.stats.patchSearchesOverBudget, 0u);
+  EXPECT_LT(g.stats.pairsHiddenByOne + g.stats.pairsHiddenByWall, 64u);
   expectDroppedCeilingPatchesBehindThePlate(scene, g, 1);
 }
 
