@@ -263,7 +263,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
       if (!crosses) {
         // Only the box of the parts near such walls: a ray from elsewhere on the piece would
         // cross them further than the slack from its start. Where an opening of the cell into a
-        // cell S is placed in passes within the slack of all of such a part, rays a slack beside
+        // cell S is placed in passes within a few slacks of all of such a part, rays a slack beside
         // the ones cutting through the wall reach the cell through that opening and are searched
         // from S there (a wall S ends at from behind: a ledge, a step); only the parts no such
         // opening runs along, as in a wedge of air shut by a solid's corner, or a wall standing
@@ -272,6 +272,9 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
         // the parts together instead, it dropped the sliver where an opening passed by one end
         // of a long edge, and q3-aggressor missed a pair whose ray crossed a wall standing on
         // the edge's other end, 4 units from the opening.)
+        // A part near a wall is itself up to about two slacks across (at a corner, both ways):
+        // an opening within a few slacks of each of its corners runs along all of it.
+        constexpr double kOpeningReach = 4;
         auto openingAlong = [&](const ConvexPolygon& close) {
           return std::any_of(portals.begin(), portals.end(), [&](uint32_t q) {
             const Portal& portal = sub.portals[q];
@@ -280,7 +283,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
                    std::any_of(out.placements[p].begin(), out.placements[p].end(),
                                [&](const auto& pl) { return pl.first == o; }) &&
                    std::all_of(close.vertices.begin(), close.vertices.end(), [&](const Vec3& v) {
-                     return distanceToPolygon(v, portal.polygon) <= slack;
+                     return distanceToPolygon(v, portal.polygon) <= kOpeningReach * slack;
                    });
           });
         };
