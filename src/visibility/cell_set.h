@@ -49,7 +49,6 @@ class CellSet {
     }
     return fresh != 0;
   }
-  /// Whether this and `other` share a cell.
   /// this = a minus b; true when something is left.
   bool assignDifference(const CellSet& a, const CellSet& b) {
     words_.resize(a.words_.size());
@@ -69,6 +68,7 @@ class CellSet {
     }
     return any != 0;
   }
+  /// Whether this and `other` share a cell.
   bool intersects(const CellSet& other) const {
     for (size_t w = 0; w < words_.size(); ++w)
       if (words_[w] & other.words_[w]) return true;

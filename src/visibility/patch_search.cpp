@@ -18,7 +18,6 @@
 namespace gv {
 namespace {
 
-/// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
 /// A ball: the points within `radius` of `center`.
 struct Ball {
   Vec3 center;
@@ -37,6 +36,7 @@ Ball ballAround(std::span<const Vec3> points) {
   return b;
 }
 
+/// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
 struct CellPatch {
   uint32_t patch = 0;
   ConvexPolygon piece;
@@ -146,6 +146,22 @@ std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
   return cur;
 }
 
+/// The distance from x to the convex polygon (its points, not its plane): exact up to rounding.
+double distanceToPolygon(const Vec3& x, const ConvexPolygon& poly) {
+  const std::vector<Vec3>& v = poly.vertices;
+  const Vec3& n = poly.plane.normal;
+  bool inside = v.size() >= 3;
+  double nearest = INFINITY;
+  for (size_t i = 0; i < v.size(); ++i) {
+    const Vec3 a = v[i], e = v[(i + 1) % v.size()] - a;
+    if (dot(cross(e, x - a), n) < 0) inside = false;  // outside this edge (loops turn about n)
+    const double ee = lengthSquared(e);
+    const double t = ee > 0 ? std::clamp(dot(x - a, e) / ee, 0.0, 1.0) : 0.0;
+    nearest = std::min(nearest, length(x - (a + e * t)));
+  }
+  return inside ? std::abs(poly.plane.distance(x)) : nearest;
+}
+
 /// Slivers across thin walls. A patch S ending against a one-sided wall W (a face with air
 /// behind it: a cell B whose boundary W lies on sees W's back) is not listed in B, yet a ray may
 /// leave S within the model tolerance of W, cross W within that distance of its start (the
@@ -177,22 +193,6 @@ std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
 /// them, and slivers there list 2.4-4.5 times the pairs, searched leaf by leaf, for the one pair
 /// per level that 10^6 rays find at the contact distance 1e-5 (none at 1e-6).
 /// Returns the number of pieces placed.
-/// The distance from x to the convex polygon (its points, not its plane): exact up to rounding.
-double distanceToPolygon(const Vec3& x, const ConvexPolygon& poly) {
-  const std::vector<Vec3>& v = poly.vertices;
-  const Vec3& n = poly.plane.normal;
-  bool inside = v.size() >= 3;
-  double nearest = INFINITY;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const Vec3 a = v[i], e = v[(i + 1) % v.size()] - a;
-    if (dot(cross(e, x - a), n) < 0) inside = false;  // outside this edge (loops turn about n)
-    const double ee = lengthSquared(e);
-    const double t = ee > 0 ? std::clamp(dot(x - a, e) / ee, 0.0, 1.0) : 0.0;
-    nearest = std::min(nearest, length(x - (a + e * t)));
-  }
-  return inside ? std::abs(poly.plane.distance(x)) : nearest;
-}
-
 size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
                             bool outside, PatchPlacement& out) {
   std::vector<Aabb> boxes;
