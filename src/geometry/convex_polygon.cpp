@@ -2,6 +2,7 @@
 #include "geometry/convex_polygon.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace gv {
@@ -37,8 +38,8 @@ void cleanVertices(std::vector<Vec3>& v, double eps) {
       const Vec3 chord = next - prev;
       const double chordLength = length(chord);
       // Distance of v[i] from the line prev-next; a vanishing chord means a spike out and back.
-      const bool collinear = chordLength <= eps ||
-                             length(cross(chord, v[i] - prev)) <= eps * chordLength;
+      const bool collinear =
+          chordLength <= eps || length(cross(chord, v[i] - prev)) <= eps * chordLength;
       if (collinear) {
         v.erase(v.begin() + static_cast<std::ptrdiff_t>(i));
         changed = true;
@@ -92,7 +93,9 @@ std::optional<ConvexPolygon> ConvexPolygon::fromVerticesInPlane(std::vector<Vec3
   return ConvexPolygon{std::move(vertices), plane};
 }
 
-double ConvexPolygon::area() const { return 0.5 * dot(newellNormal(vertices), plane.normal); }
+double ConvexPolygon::area() const {
+  return 0.5 * dot(newellNormal(vertices), plane.normal);
+}
 
 Vec3 ConvexPolygon::centroid() const {
   const Vec3 o = vertices[0];
@@ -143,6 +146,27 @@ bool ConvexPolygon::contains(const Vec3& p, const Tolerance& tol) const {
     if (dot(cross(plane.normal, edge), p - a) < -eps * length(edge)) return false;
   }
   return true;
+}
+
+Vec3 ConvexPolygon::nearestPoint(const Vec3& x) const {
+  const Vec3 onPlane = x - plane.distance(x) * plane.normal;
+  bool inside = true;
+  Vec3 best = vertices[0];
+  double bestDistance = INFINITY;
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    const Vec3& a = vertices[i];
+    const Vec3& b = vertices[(i + 1) % vertices.size()];
+    const Vec3 edge = b - a;
+    if (dot(cross(edge, onPlane - a), plane.normal) < 0) inside = false;
+    const double len2 = dot(edge, edge);
+    const double t = len2 > 0 ? std::clamp(dot(onPlane - a, edge) / len2, 0.0, 1.0) : 0.0;
+    const Vec3 q = a + t * edge;
+    if (distance(q, onPlane) < bestDistance) {
+      bestDistance = distance(q, onPlane);
+      best = q;
+    }
+  }
+  return inside ? onPlane : best;
 }
 
 PolygonSplit split(const ConvexPolygon& polygon, const Plane& splitter, const Tolerance& tol) {

@@ -21,7 +21,8 @@ struct ConvexPolygon {
   /// plane by Newell's method. Removes repeated consecutive vertices and collinear middle vertices.
   /// Returns nullopt when fewer than 3 distinct vertices remain or the polygon has zero width
   /// (twice its area over its longest edge below tol.length()).
-  static std::optional<ConvexPolygon> fromVertices(std::vector<Vec3> vertices, const Tolerance& tol);
+  static std::optional<ConvexPolygon> fromVertices(std::vector<Vec3> vertices,
+                                                   const Tolerance& tol);
   /// As `fromVertices`, but keeps `plane` (whose front the vertices must be counter-clockwise
   /// from) instead of refitting one: pieces of a split polygon and faces of a cell stay exactly on
   /// their support plane, so repeated splitting never drifts the plane.
@@ -39,6 +40,8 @@ struct ConvexPolygon {
   PlaneSide classify(const Plane& splitter, const Tolerance& tol) const;
   /// True when p lies in the polygon's plane (within tolerance) and inside or on its boundary.
   bool contains(const Vec3& p, const Tolerance& tol) const;
+  /// The point of the polygon nearest to `x` (in it, or on its boundary).
+  Vec3 nearestPoint(const Vec3& x) const;
 };
 
 /// The pieces of a polygon cut by a plane. For a polygon lying in the plane (within tolerance),

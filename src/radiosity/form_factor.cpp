@@ -107,28 +107,6 @@ double radiusAbout(const ConvexPolygon& p, const Vec3& c) {
 /// would sit on the source's boundary, where the point form factor is ill-defined.
 constexpr double kVertexPull = 0.01;
 
-/// The point of convex polygon `p` nearest to `x`.
-Vec3 nearestPoint(const ConvexPolygon& p, const Vec3& x) {
-  const Vec3 onPlane = x - p.plane.distance(x) * p.plane.normal;
-  bool inside = true;
-  Vec3 best = p.vertices[0];
-  double bestDistance = INFINITY;
-  for (size_t i = 0; i < p.vertices.size(); ++i) {
-    const Vec3& a = p.vertices[i];
-    const Vec3& b = p.vertices[(i + 1) % p.vertices.size()];
-    const Vec3 edge = b - a;
-    if (dot(cross(edge, onPlane - a), p.plane.normal) < 0) inside = false;
-    const double len2 = dot(edge, edge);
-    const double t = len2 > 0 ? std::clamp(dot(onPlane - a, edge) / len2, 0.0, 1.0) : 0.0;
-    const Vec3 q = a + t * edge;
-    if (distance(q, onPlane) < bestDistance) {
-      bestDistance = distance(q, onPlane);
-      best = q;
-    }
-  }
-  return inside ? onPlane : best;
-}
-
 /// max - min of the point form factor from `receiver` (normal = its plane's) to `source`, over the
 /// receiver's pulled vertices, its centroid, and its point nearest to the source's centroid
 /// (pulled too); `clipped` adds 0 (a part of the receiver gets none). The nearest point is where
@@ -145,7 +123,7 @@ double spread(const ConvexPolygon& receiver, const ConvexPolygon& source, bool c
     hi = std::max(hi, f);
   };
   for (const Vec3& v : receiver.vertices) sample(v);
-  sample(nearestPoint(receiver, source.centroid()));
+  sample(receiver.nearestPoint(source.centroid()));
   if (clipped) lo = 0;
   return hi - lo;
 }

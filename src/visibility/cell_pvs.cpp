@@ -14,6 +14,7 @@
 #include <memory>
 #include <thread>
 
+#include "geometry/ball.h"
 #include "geometry/tolerance.h"
 #include "util/timing.h"
 #include "visibility/cell_set.h"
@@ -33,9 +34,8 @@ constexpr size_t kResultLag = 16;
 struct DirectedPortal {
   Winding winding;
   int from = 0, to = 0;
-  Vec3 normal;  // unit, direction of travel (zero if degenerate)
-  Vec3 center;  // a ball holding the winding (target checks)
-  double radius = 0;
+  Vec3 normal;                          // unit, direction of travel (zero if degenerate)
+  Ball ball;                            // holding the winding (target checks)
   double minOffset = 0, maxOffset = 0;  // the slab of normal·x its vertices span
 };
 
@@ -43,16 +43,9 @@ struct Graph {
   std::vector<DirectedPortal> portals;
   std::vector<std::vector<int>> outgoing;  // per cell, directed portals leaving it
   // Per cell, a ball holding all its portals (target checks reject a cell's portals at once).
-  std::vector<Vec3> cellCenter;
-  std::vector<double> cellRadius;
+  std::vector<Ball> cellBall;
   Tolerance tol;
 };
-
-// A ball radius grown so that the target checks' ball tests hold despite rounding (1e-9 of the
-// radius and of the length tolerance, far above the ~1e-16 relative error of a dot product).
-double withRoundingRoom(double radius, const Tolerance& tol) {
-  return radius * (1 + 1e-9) + 1e-9 * tol.length();
-}
 
 Graph buildGraph(const PortalGraph& graph) {
   Graph g;
@@ -76,29 +69,18 @@ Graph buildGraph(const PortalGraph& graph) {
         d.minOffset = std::min(d.minOffset, dot(d.normal, v));
         d.maxOffset = std::max(d.maxOffset, dot(d.normal, v));
       }
-      d.center = Vec3{};
-      for (const Vec3& v : d.winding) d.center += v;
-      if (!d.winding.empty()) d.center = d.center / double(d.winding.size());
-      for (const Vec3& v : d.winding) d.radius = std::max(d.radius, length(v - d.center));
-      d.radius = withRoundingRoom(d.radius, g.tol);
+      d.ball = ballAround(d.winding, g.tol);
       g.outgoing[d.from].push_back(static_cast<int>(g.portals.size()));
       g.portals.push_back(std::move(d));
     }
   }
   // A cell's ball: about the mean of its portals' centres, out to the farthest portal ball.
-  g.cellCenter.assign(graph.cellCount, Vec3{});
-  g.cellRadius.assign(graph.cellCount, 0.0);
+  g.cellBall.assign(graph.cellCount, Ball{});
+  std::vector<Ball> balls;
   for (size_t c = 0; c < graph.cellCount; ++c) {
-    const std::vector<int>& out = g.outgoing[c];
-    if (out.empty()) continue;
-    Vec3 center{};
-    for (int pi : out) center += g.portals[pi].center;
-    center = center / double(out.size());
-    double radius = 0;
-    for (int pi : out)
-      radius = std::max(radius, length(g.portals[pi].center - center) + g.portals[pi].radius);
-    g.cellCenter[c] = center;
-    g.cellRadius[c] = withRoundingRoom(radius, g.tol);
+    balls.clear();
+    for (int pi : g.outgoing[c]) balls.push_back(g.portals[pi].ball);
+    g.cellBall[c] = ballAroundBalls(balls, g.tol);
   }
   return g;
 }
@@ -357,7 +339,7 @@ struct Searcher {
   bool mayEnter(size_t y, uint64_t& tests) {
     // All of y's portals at once when one plane has the ball of them behind it.
     ++tests;
-    if (!stabber.mayCrossLater({}, g.cellCenter[y], g.cellRadius[y])) return false;
+    if (!stabber.mayCrossLater({}, g.cellBall[y].center, g.cellBall[y].radius)) return false;
     // The portals into y are the reverses of its exits: the same points. The one that let
     // y through last time first: it usually does again, deeper on the same path.
     const std::vector<int>& exits = g.outgoing[y];
@@ -365,7 +347,7 @@ struct Searcher {
     for (size_t k = 0, i = first; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
       ++tests;
       const DirectedPortal& q = g.portals[exits[i]];
-      if (stabber.mayCrossLater(q.winding, q.center, q.radius)) {
+      if (stabber.mayCrossLater(q.winding, q.ball.center, q.ball.radius)) {
         lastCrossed[y] = static_cast<uint32_t>(i);
         return true;
       }

@@ -10,6 +10,7 @@
 #include <optional>
 #include <span>
 
+#include "geometry/ball.h"
 #include "util/parallel_for.h"
 #include "visibility/facing_lines.h"
 #include "visibility/patch_grid.h"
@@ -17,24 +18,6 @@
 
 namespace gv {
 namespace {
-
-/// A ball: the points within `radius` of `center`.
-struct Ball {
-  Vec3 center;
-  double radius = 0;
-};
-
-/// A ball holding every point of `points` (their mean, and the largest distance from it).
-Ball ballAround(std::span<const Vec3> points) {
-  Ball b;
-  if (points.empty()) return b;
-  for (const Vec3& x : points) b.center = b.center + x;
-  b.center = b.center * (1.0 / static_cast<double>(points.size()));
-  double r2 = 0;
-  for (const Vec3& x : points) r2 = std::max(r2, lengthSquared(x - b.center));
-  b.radius = std::sqrt(r2) * (1 + 1e-12);  // rounding room: the ball holds its points
-  return b;
-}
 
 /// A patch's piece inside (or on the boundary of) one cell, and which way its front looks.
 struct CellPatch {
@@ -144,22 +127,6 @@ std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
     if (cur) cur = clipToFront(*cur, Plane{-n, -b.hi[axis]}, tol);
   }
   return cur;
-}
-
-/// The distance from x to the convex polygon (its points, not its plane): exact up to rounding.
-double distanceToPolygon(const Vec3& x, const ConvexPolygon& poly) {
-  const std::vector<Vec3>& v = poly.vertices;
-  const Vec3& n = poly.plane.normal;
-  bool inside = v.size() >= 3;
-  double nearest = INFINITY;
-  for (size_t i = 0; i < v.size(); ++i) {
-    const Vec3 a = v[i], e = v[(i + 1) % v.size()] - a;
-    if (dot(cross(e, x - a), n) < 0) inside = false;  // outside this edge (loops turn about n)
-    const double ee = lengthSquared(e);
-    const double t = ee > 0 ? std::clamp(dot(x - a, e) / ee, 0.0, 1.0) : 0.0;
-    nearest = std::min(nearest, length(x - (a + e * t)));
-  }
-  return inside ? std::abs(poly.plane.distance(x)) : nearest;
 }
 
 /// Slivers across thin walls. A patch S ending against a one-sided wall W (a face with air
@@ -283,7 +250,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
                    std::any_of(out.placements[p].begin(), out.placements[p].end(),
                                [&](const auto& pl) { return pl.first == o; }) &&
                    std::all_of(close.vertices.begin(), close.vertices.end(), [&](const Vec3& v) {
-                     return distanceToPolygon(v, portal.polygon) <= kOpeningReach * slack;
+                     return distance(v, portal.polygon.nearestPoint(v)) <= kOpeningReach * slack;
                    });
           });
         };
@@ -457,19 +424,12 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
   out.acrossPortals = placeAcrossCoplanarPortals(scene, sub, tol, out);
   out.thinWallSlivers = placeThinWallSlivers(scene, sub, tol, outsideSlivers, out);
   out.cellBalls.resize(sub.cells.size());
-  std::vector<Vec3> centers;
+  std::vector<Ball> balls;
   for (size_t c = 0; c < sub.cells.size(); ++c) {
-    centers.clear();
-    for (CellPatch& cp : cellPatches[c]) {
-      cp.ball = ballAround(cp.piece.vertices);
-      centers.push_back(cp.ball.center);
-    }
-    Ball& b = out.cellBalls[c];
-    b = ballAround(centers);
-    double r = 0;
-    for (const CellPatch& cp : cellPatches[c])
-      r = std::max(r, length(cp.ball.center - b.center) + cp.ball.radius);
-    b.radius = r * (1 + 1e-12);
+    balls.clear();
+    for (CellPatch& cp : cellPatches[c])
+      balls.push_back(cp.ball = ballAround(cp.piece.vertices, tol));
+    out.cellBalls[c] = ballAroundBalls(balls, tol);
   }
   return out;
 }
