@@ -24,22 +24,14 @@ class BallTree {
   /// The ball holding every item (the zero ball when there are none).
   const Ball& bounds() const { return nodes_.empty() ? kEmpty : nodes_.front().ball; }
 
-  /// Calls visit(i) for every item i in a leaf whose ball and every enclosing ball `keep`
-  /// accepts; a ball `keep` rejects skips all the items inside it. Items are visited in the
-  /// tree's order, not by index.
-  template <class Keep, class Visit>
-  void forEachKept(Keep&& keep, Visit&& visit) const {
-    for (size_t i = 0; i < nodes_.size();) {
-      const Node& n = nodes_[i];
-      if (!keep(n.ball)) {
-        i = n.skip;
-      } else if (n.leaf) {
-        for (uint32_t k = n.begin; k < n.end; ++k) visit(items_[k]);
-        i = n.skip;
-      } else {
-        ++i;  // the first child follows its parent
-      }
-    }
+  /// Calls visit(i, state) for every item i in a leaf whose ball and every enclosing ball
+  /// `keep(ball, state)` accepts; a ball it rejects skips all the items inside it. `state`
+  /// starts as `root` and flows down: each child starts from its parent's state as keep left it
+  /// (a plane test drops the planes a ball is wholly in front of, for everything inside it).
+  /// Items are visited in the tree's order, not by index.
+  template <class State, class Keep, class Visit>
+  void forEachKept(State root, Keep&& keep, Visit&& visit) const {
+    if (!nodes_.empty()) walk(0, root, keep, visit);
   }
 
  private:
@@ -49,6 +41,17 @@ class BallTree {
     uint32_t skip = 0;            // the next node after this subtree (preorder)
     bool leaf = false;
   };
+  template <class State, class Keep, class Visit>
+  void walk(uint32_t i, State state, Keep& keep, Visit& visit) const {
+    const Node& n = nodes_[i];
+    if (!keep(n.ball, state)) return;
+    if (n.leaf) {
+      for (uint32_t k = n.begin; k < n.end; ++k) visit(items_[k], state);
+      return;
+    }
+    walk(i + 1, state, keep, visit);  // the first child follows its parent (preorder)
+    walk(nodes_[i + 1].skip, state, keep, visit);
+  }
   uint32_t build(std::span<const Ball> balls, uint32_t begin, uint32_t end, const Tolerance& tol,
                  size_t leafSize);
 

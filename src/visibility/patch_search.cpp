@@ -597,15 +597,16 @@ class PatchSearch {
     }
     if (!unsaturated_.contains(cell)) return;
     const std::vector<CellPatch>& pieces = cellPatches_[cell];
+    const LaterPlanes planes{stabber_.laterPlanes()};
     cellTrees_[cell].forEachKept(
-        [&](const Ball& b) { return stabber_.mayCrossLater({}, b.center, b.radius); },
-        [&](uint32_t k) {
+        planes.all(),
+        [&](const Ball& b, uint64_t& mask) { return planes.keep(b.center, b.radius, {}, mask); },
+        [&](uint32_t k, uint64_t mask) {
           const CellPatch& t = pieces[k];
           if (t.patch == source_) return;
           const uint8_t f = attainable(t);
           if ((flags_[t.patch] & f) == f) return;
-          if (stabber_.mayCrossLater(t.piece.vertices, t.ball.center, t.ball.radius))
-            mark(t.patch, f);
+          if (planes.keep(t.ball.center, t.ball.radius, t.piece.vertices, mask)) mark(t.patch, f);
         });
   }
 

@@ -316,6 +316,24 @@ bool PortalSequenceStabber::mayCrossLater(std::span<const Vec3> portal, const Ve
   }
 }
 
+std::span<const ClipPlane> PortalSequenceStabber::laterPlanes() {
+  if (depth_ < 2) return {};
+  Level& top = levels_[depth_ - 1];
+  if (!top.laterReady) {
+    while (!top.separatorCursor.done())
+      appendNextSeparators(top.source, top.clipped, top.separatorCursor, top.separators);
+    // In mayCrossLater's order: the first portal's plane, the last's, the separating planes.
+    const double slack = tol_.length();
+    top.later.clear();
+    if (!firstDegenerate_) top.later.push_back({normal_, firstMinOffset_ - slack});
+    if (top.hasPlane) top.later.push_back({top.planeNormal, top.planeMin - slack});
+    for (const ClipPlane& p : top.separators)
+      top.later.push_back({p.unitNormal, p.offset - slack});
+    top.laterReady = true;
+  }
+  return top.later;
+}
+
 bool PortalSequenceStabber::clipFirstPortal(Level& level, const Level& prev, bool degenerate) {
   // Symmetrically, the line crosses the new portal's plane forward after crossing the first
   // portal: the first portal's useful part is behind that plane.
@@ -354,6 +372,7 @@ StabbingResult PortalSequenceStabber::push(std::span<const Vec3> portal, bool ma
   level.lpValid = options_.useLinearProgram;
   level.separators.clear();
   level.separatorCursor = SeparatorCursor{};
+  level.laterReady = false;
   level.lpPending = level.blocked = false;
   level.witness.reset();
   level.basis = SimplexBasis{};

@@ -140,6 +140,12 @@ class PortalSequenceStabber {
   /// beyond or within decide without the vertices. With `portal` empty only the ball is tested
   /// (false when one plane has all of it behind: then no portal inside it can be crossed).
   bool mayCrossLater(std::span<const Vec3> portal, const Vec3& center, double radius);
+  /// Every plane mayCrossLater tests for the current sequence (all its separating planes found
+  /// first), each with its offset lowered by the clip slack: a point p is on the kept side when
+  /// dot(unitNormal, p) >= offset. Empty for sequences of fewer than two portals (nothing is
+  /// rejected). Valid until the next push or pop. For many tests against one sequence:
+  /// LaterPlanes::keep below, in a hierarchy of balls.
+  std::span<const ClipPlane> laterPlanes();
   /// Empties the sequence (keeps statistics).
   void clear();
   /// Number of portals in the sequence.
@@ -171,6 +177,8 @@ class PortalSequenceStabber {
     bool lpPending = false;           // the LP solve was deferred (deferLp)
     // The portal's plane as a slab (unit Newell normal, least offset of its vertices); a
     // degenerate portal has none.
+    std::vector<ClipPlane> later;  // laterPlanes(), once asked for
+    bool laterReady = false;
     bool hasPlane = false;
     Vec3 planeNormal{};
     double planeMin = 0;
@@ -219,6 +227,40 @@ class PortalSequenceStabber {
   std::vector<double> dist_;
   WitnessScratch witnessScratch_;
   std::vector<std::span<const Vec3>> loops_;
+};
+
+/// The test of mayCrossLater against a set of planes (PortalSequenceStabber::laterPlanes), for a
+/// hierarchy of balls: the bits of `mask` name the planes still to test (the first 64; any
+/// beyond are always tested). A ball wholly in front of a plane clears its bit, so the balls
+/// and polygons inside it skip that plane; nothing is kept that mayCrossLater rejects, nor
+/// rejected that it keeps.
+struct LaterPlanes {
+  std::span<const ClipPlane> planes;
+
+  uint64_t all() const { return planes.size() >= 64 ? ~uint64_t{0} : (uint64_t{1} << planes.size()) - 1; }
+  /// False when one plane has the ball (and, when `vertices` is not empty, every vertex) behind.
+  bool keep(const Vec3& center, double radius, std::span<const Vec3> vertices,
+            uint64_t& mask) const {
+    for (size_t i = 0; i < planes.size(); ++i) {
+      if (i < 64 && !(mask >> i & 1)) continue;
+      const ClipPlane& h = planes[i];
+      const double d = dot(h.unitNormal, center) - h.offset;
+      if (d >= radius) {
+        if (i < 64) mask &= ~(uint64_t{1} << i);
+        continue;
+      }
+      if (d < -radius) return false;
+      if (vertices.empty()) continue;
+      bool anyInFront = false;
+      for (const Vec3& v : vertices)
+        if (dot(h.unitNormal, v) - h.offset >= 0) {
+          anyInFront = true;
+          break;
+        }
+      if (!anyInFront) return false;
+    }
+    return true;
+  }
 };
 
 /// One-shot form: the result of pushing every portal of `sequence` (stopping at the first
