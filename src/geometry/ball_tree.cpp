@@ -36,8 +36,8 @@ uint32_t BallTree::build(std::span<const Ball> balls, uint32_t begin, uint32_t e
   } else {
     const Vec3 extent = hi - lo;
     const int axis = extent[0] >= extent[1] && extent[0] >= extent[2] ? 0
-                     : extent[1] >= extent[2]                        ? 1
-                                                                     : 2;
+                     : extent[1] >= extent[2]                         ? 1
+                                                                      : 2;
     const uint32_t mid = begin + (end - begin) / 2;
     std::nth_element(items_.begin() + begin, items_.begin() + mid, items_.begin() + end,
                      [&](uint32_t x, uint32_t y) {

@@ -56,7 +56,7 @@ class BallTree {
                  size_t leafSize);
 
   static constexpr Ball kEmpty{};
-  std::vector<Node> nodes_;     // preorder
+  std::vector<Node> nodes_;      // preorder
   std::vector<uint32_t> items_;  // item indices, grouped by leaf
 };
 

@@ -327,8 +327,7 @@ std::span<const ClipPlane> PortalSequenceStabber::laterPlanes() {
     top.later.clear();
     if (!firstDegenerate_) top.later.push_back({normal_, firstMinOffset_ - slack});
     if (top.hasPlane) top.later.push_back({top.planeNormal, top.planeMin - slack});
-    for (const ClipPlane& p : top.separators)
-      top.later.push_back({p.unitNormal, p.offset - slack});
+    for (const ClipPlane& p : top.separators) top.later.push_back({p.unitNormal, p.offset - slack});
     top.laterReady = true;
   }
   return top.later;

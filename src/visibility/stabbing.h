@@ -237,7 +237,9 @@ class PortalSequenceStabber {
 struct LaterPlanes {
   std::span<const ClipPlane> planes;
 
-  uint64_t all() const { return planes.size() >= 64 ? ~uint64_t{0} : (uint64_t{1} << planes.size()) - 1; }
+  uint64_t all() const {
+    return planes.size() >= 64 ? ~uint64_t{0} : (uint64_t{1} << planes.size()) - 1;
+  }
   /// False when one plane has the ball (and, when `vertices` is not empty, every vertex) behind.
   bool keep(const Vec3& center, double radius, std::span<const Vec3> vertices,
             uint64_t& mask) const {

@@ -179,6 +179,48 @@ TEST(StabbingHand, MayCrossLaterKeepsWhatLinesReachAndDropsTheRest) {
   EXPECT_TRUE(s.mayCrossLater(rectX(5, 0, 1, 0, 1), Vec3{5, 0.5, 0.5}, 100));
 }
 
+// LaterPlanes (the masked test of the over-budget answers and hierarchies of balls) keeps
+// exactly what mayCrossLater keeps: the hand sequence above, then random portals beyond it,
+// each tested alone with a full mask and after its ball's mask was narrowed by a larger ball
+// holding it (as in a tree).
+TEST(StabbingHand, LaterPlanesKeepWhatMayCrossLaterKeeps) {
+  PortalSequenceStabber s(kTol);
+  ASSERT_NE(s.push(rectX(1, 0, 1, 0, 1)), StabbingResult::Blocked);
+  EXPECT_TRUE(s.laterPlanes().empty());  // one portal: nothing rejects yet
+  ASSERT_NE(s.push(rectX(2, 0.2, 0.9, 0.1, 0.8)), StabbingResult::Blocked);
+  const LaterPlanes planes{s.laterPlanes()};
+  ASSERT_GE(planes.planes.size(), 4u);  // the two portals' planes and separating planes
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-6, 8), size(0.05, 3);
+  int kept = 0, rejected = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double x = u(rng), y = u(rng), z = u(rng), w = size(rng), h = size(rng);
+    const Winding q = (i % 3 == 0)   ? rectX(x, y, y + w, z, z + h)
+                      : (i % 3 == 1) ? rectY(y, x, x + w, z, z + h)
+                                     : rectZ(x, x + w, y, y + h, z);
+    Vec3 c{};
+    for (const Vec3& v : q) c += v;
+    c = c / double(q.size());
+    double r = 0;
+    for (const Vec3& v : q) r = std::max(r, length(v - c));
+    r *= 1 + 1e-9;
+    const bool expected = s.mayCrossLater(q, c, r);
+    uint64_t mask = planes.all();
+    EXPECT_EQ(planes.keep(c, r, q, mask), expected) << i;
+    // Inside a ball twice as large around a nearby centre: its mask first, then the portal's.
+    uint64_t outer = planes.all();
+    const Vec3 oc = c + Vec3{0.3 * r, -0.2 * r, 0.1 * r};
+    if (planes.keep(oc, 2 * r + 0.5 * r, {}, outer)) {
+      EXPECT_EQ(planes.keep(c, r, q, outer), expected) << i;
+    } else {
+      EXPECT_FALSE(expected) << i;  // a ball holding the portal wholly behind one plane
+    }
+    ++(expected ? kept : rejected);
+  }
+  EXPECT_GT(kept, 200);  // both answers well represented
+  EXPECT_GT(rejected, 200);
+}
+
 TEST(StabbingHand, UpThenDownIsBlocked) {
   // Up through the floor of a cell, out through its side, down through the next cell's floor.
   // The first two share an edge, so no plane separates them and clipping alone cannot decide;
