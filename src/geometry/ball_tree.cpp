@@ -1,3 +1,5 @@
+// Building the ball hierarchy of ball_tree.h: median splits along the widest axis of the
+// centres, nodes in preorder so that a walk needs no child pointers.
 #include "geometry/ball_tree.h"
 
 #include <algorithm>
