@@ -175,10 +175,10 @@ class PortalSequenceStabber {
     std::vector<ClipPlane> separators;
     SeparatorCursor separatorCursor;  // how far `separators` has been found (lazily)
     bool lpPending = false;           // the LP solve was deferred (deferLp)
+    std::vector<ClipPlane> later;     // laterPlanes(), once asked for
+    bool laterReady = false;
     // The portal's plane as a slab (unit Newell normal, least offset of its vertices); a
     // degenerate portal has none.
-    std::vector<ClipPlane> later;  // laterPlanes(), once asked for
-    bool laterReady = false;
     bool hasPlane = false;
     Vec3 planeNormal{};
     double planeMin = 0;
@@ -229,6 +229,21 @@ class PortalSequenceStabber {
   std::vector<std::span<const Vec3>> loops_;
 };
 
+/// Where a ball, and a polygon inside it, lie against a plane whose kept side is
+/// dot(unitNormal, p) >= offset: wholly in front of it (the ball), behind it (the ball, or every
+/// vertex of the polygon when one is given), or across it. mayCrossLater's test of one plane.
+enum class LaterSide { Behind, Across, InFront };
+inline LaterSide sideOfLater(const Vec3& unitNormal, double offset, const Vec3& center,
+                             double radius, std::span<const Vec3> vertices) {
+  const double d = dot(unitNormal, center) - offset;
+  if (d >= radius) return LaterSide::InFront;
+  if (d < -radius) return LaterSide::Behind;
+  if (vertices.empty()) return LaterSide::Across;  // the ball alone: it rejects nothing
+  for (const Vec3& v : vertices)
+    if (dot(unitNormal, v) - offset >= 0) return LaterSide::Across;
+  return LaterSide::Behind;
+}
+
 /// The test of mayCrossLater against a set of planes (PortalSequenceStabber::laterPlanes), for a
 /// hierarchy of balls: the bits of `mask` name the planes still to test (the first 64; any
 /// beyond are always tested). A ball wholly in front of a plane clears its bit, so the balls
@@ -246,20 +261,9 @@ struct LaterPlanes {
     for (size_t i = 0; i < planes.size(); ++i) {
       if (i < 64 && !(mask >> i & 1)) continue;
       const ClipPlane& h = planes[i];
-      const double d = dot(h.unitNormal, center) - h.offset;
-      if (d >= radius) {
-        if (i < 64) mask &= ~(uint64_t{1} << i);
-        continue;
-      }
-      if (d < -radius) return false;
-      if (vertices.empty()) continue;
-      bool anyInFront = false;
-      for (const Vec3& v : vertices)
-        if (dot(h.unitNormal, v) - h.offset >= 0) {
-          anyInFront = true;
-          break;
-        }
-      if (!anyInFront) return false;
+      const LaterSide side = sideOfLater(h.unitNormal, h.offset, center, radius, vertices);
+      if (side == LaterSide::Behind) return false;
+      if (side == LaterSide::InFront && i < 64) mask &= ~(uint64_t{1} << i);
     }
     return true;
   }
