@@ -49,25 +49,6 @@ class CellSet {
     }
     return fresh != 0;
   }
-  /// this = a minus b; true when something is left.
-  bool assignDifference(const CellSet& a, const CellSet& b) {
-    words_.resize(a.words_.size());
-    uint64_t any = 0;
-    for (size_t w = 0; w < words_.size(); ++w) any |= words_[w] = a.words_[w] & ~b.words_[w];
-    return any != 0;
-  }
-  /// Keeps the members that some set of `sets` holds too; true when something is left. Reads
-  /// only the words of `sets` where this set has members: cheap for a sparse set.
-  bool intersectWithUnion(std::span<const CellSet* const> sets) {
-    uint64_t any = 0;
-    for (size_t w = 0; w < words_.size(); ++w) {
-      if (!words_[w]) continue;
-      uint64_t u = 0;
-      for (const CellSet* s : sets) u |= s->words_[w];
-      any |= words_[w] &= u;
-    }
-    return any != 0;
-  }
   /// Whether this and `other` share a cell.
   bool intersects(const CellSet& other) const {
     for (size_t w = 0; w < words_.size(); ++w)
@@ -85,6 +66,15 @@ class CellSet {
     for (size_t w = 0; w < words_.size(); ++w)
       for (uint64_t bits = words_[w]; bits; bits &= bits - 1)
         f(w * 64 + static_cast<size_t>(std::countr_zero(bits)));
+  }
+  /// Whether f(i) holds for some cell i of this set not in `seen`: tries them in ascending order
+  /// and stops at the first. f may erase cells from this set.
+  template <typename F>
+  bool anyNotIn(const CellSet& seen, F f) const {
+    for (size_t w = 0; w < words_.size(); ++w)
+      for (uint64_t bits = words_[w] & ~seen.words_[w]; bits; bits &= bits - 1)
+        if (f(w * 64 + static_cast<size_t>(std::countr_zero(bits)))) return true;
+    return false;
   }
   /// Capacity in cells, rounded up to whole words.
   size_t capacity() const { return words_.size() * 64; }

@@ -124,6 +124,8 @@ void cellPvsVisibility(const Subdivision& sub, int threads, const PropagationOpt
   pvsOptions.parallel = threads > 1;
   pvsOptions.maxSequencesPerSearch = options.cellSequenceBudget;
   pvsOptions.targetCheckRatio = options.cellTargetChecks;
+  // The searches here run under a budget: keep their pruning as strong as it can be.
+  pvsOptions.targetCheckWholeBranch = true;
   // Between waves of the search: progress, and the deadline (a wave is short).
   pvsOptions.progress = [&](size_t done, size_t total) {
     if (options.deadline != Clock::time_point::max() && Clock::now() > options.deadline)

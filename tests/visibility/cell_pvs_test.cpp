@@ -333,27 +333,32 @@ TEST(CellPvsRealMap, BranchesOverBudgetAnswerOnlyTheCellsTheirLinesMayEnter) {
 // Target checks only narrow might-see sets by clipping: every pair the search without them
 // keeps and a ray sees is kept, row by row the result is a subset, the checks run and drop
 // cells, and the output does not depend on the number of threads.
+// Both forms: testing a branch's cells until one may be entered, and testing them all.
 TEST(CellPvsRealMap, TargetChecksKeepEveryRayPairAndOnlyNarrow) {
-  for (const char* name : {"qbspfeatures", "light_general"}) {
-    const PrtFile prt = sharedMap(name);
-    if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
-    const LeafPvsResult without = computeLeafPvs(prt, noTargetChecks());
-    const LeafPvsResult with = computeLeafPvs(prt);
-    EXPECT_EQ(without.targetTests, 0u);
-    EXPECT_GT(with.targetTests, 0u) << name;
-    EXPECT_GT(with.targetCellsDropped, 0u) << name;
-    EXPECT_LE(with.sequencesSearched, without.sequencesSearched) << name;
-    expectSymmetricWithSelf(with);
-    ASSERT_EQ(with.visibleLeafs.size(), without.visibleLeafs.size());
-    for (size_t l = 0; l < with.visibleLeafs.size(); ++l)
-      EXPECT_TRUE(std::includes(without.visibleLeafs[l].begin(), without.visibleLeafs[l].end(),
-                                with.visibleLeafs[l].begin(), with.visibleLeafs[l].end()))
-          << name << " leaf " << l;
-    EXPECT_GT(checkAgainstRays(prt, with, 20000, 7), 50u) << name;
-    CellPvsOptions serial;
-    serial.parallel = false;
-    EXPECT_EQ(computeLeafPvs(prt, serial).visibleLeafs, with.visibleLeafs) << name;
-  }
+  for (const char* name : {"qbspfeatures", "light_general"})
+    for (const bool wholeBranch : {false, true}) {
+      SCOPED_TRACE(wholeBranch ? "whole branch" : "until one is enterable");
+      const PrtFile prt = sharedMap(name);
+      if (prt.leafCount == 0) GTEST_SKIP() << "shared data not found";
+      const LeafPvsResult without = computeLeafPvs(prt, noTargetChecks());
+      CellPvsOptions options;
+      options.targetCheckWholeBranch = wholeBranch;
+      const LeafPvsResult with = computeLeafPvs(prt, options);
+      EXPECT_EQ(without.targetTests, 0u);
+      EXPECT_GT(with.targetTests, 0u) << name;
+      EXPECT_GT(with.targetCellsDropped, 0u) << name;
+      EXPECT_LE(with.sequencesSearched, without.sequencesSearched) << name;
+      expectSymmetricWithSelf(with);
+      ASSERT_EQ(with.visibleLeafs.size(), without.visibleLeafs.size());
+      for (size_t l = 0; l < with.visibleLeafs.size(); ++l)
+        EXPECT_TRUE(std::includes(without.visibleLeafs[l].begin(), without.visibleLeafs[l].end(),
+                                  with.visibleLeafs[l].begin(), with.visibleLeafs[l].end()))
+            << name << " leaf " << l;
+      EXPECT_GT(checkAgainstRays(prt, with, 20000, 7), 50u) << name;
+      CellPvsOptions serial = options;
+      serial.parallel = false;
+      EXPECT_EQ(computeLeafPvs(prt, serial).visibleLeafs, with.visibleLeafs) << name;
+    }
 }
 
 TEST(CellPvsRealMap, LightGeneralClippingOnlyContainsEveryRayPair) {

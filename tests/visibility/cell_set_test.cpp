@@ -48,5 +48,42 @@ TEST(CellSet, OperationsMatchOrderedSets) {
   }
 }
 
+// anyNotIn visits the members not in `seen` in ascending order, stops at the first the predicate
+// accepts, and tolerates the predicate erasing members as it goes (the target checks drop cells).
+TEST(CellSet, AnyNotInStopsAtTheFirstAcceptedAndAllowsErasing) {
+  std::mt19937_64 rng(5);
+  for (size_t n : {1u, 64u, 130u, 300u}) {
+    std::bernoulli_distribution coin(0.5);
+    CellSet a(n), seen(n);
+    std::vector<size_t> expected;
+    for (size_t i = 0; i < n; ++i) {
+      const bool in = coin(rng), isSeen = coin(rng);
+      if (in) a.insert(i);
+      if (isSeen) seen.insert(i);
+      if (in && !isSeen) expected.push_back(i);
+    }
+    std::vector<size_t> visited;
+    EXPECT_FALSE(a.anyNotIn(seen, [&](size_t i) {
+      visited.push_back(i);
+      return false;
+    }));
+    EXPECT_EQ(visited, expected) << n;
+    if (expected.empty()) continue;
+    // Accept the middle one, erasing each rejected member: the rest stays.
+    const size_t accept = expected[expected.size() / 2];
+    CellSet b = a;
+    visited.clear();
+    EXPECT_TRUE(b.anyNotIn(seen, [&](size_t i) {
+      visited.push_back(i);
+      if (i == accept) return true;
+      b.erase(i);
+      return false;
+    }));
+    EXPECT_EQ(visited.back(), accept) << n;
+    EXPECT_EQ(visited.size(), expected.size() / 2 + 1) << n;
+    for (size_t i : expected) EXPECT_EQ(b.contains(i), i >= accept) << n << " " << i;
+  }
+}
+
 }  // namespace
 }  // namespace gv
