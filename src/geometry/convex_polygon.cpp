@@ -229,4 +229,13 @@ std::optional<ConvexPolygon> clipToFront(const ConvexPolygon& polygon, const Pla
   return std::move(pieces.front);
 }
 
+bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps) {
+  auto someInFront = [eps](const ConvexPolygon& of, const ConvexPolygon& plane) {
+    for (const Vec3& v : of.vertices)
+      if (plane.plane.distance(v) > eps) return true;
+    return false;
+  };
+  return someInFront(b, a) && someInFront(a, b);
+}
+
 }  // namespace gv

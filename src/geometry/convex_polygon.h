@@ -56,4 +56,9 @@ PolygonSplit split(const ConvexPolygon& polygon, const Plane& splitter, const To
 std::optional<ConvexPolygon> clipToFront(const ConvexPolygon& polygon, const Plane& plane,
                                          const Tolerance& tol);
 
+/// Whether two one-sided polygons can face each other: some vertex of each lies more than `eps`
+/// in front of the other's plane. False when either lies wholly behind or on the other's plane
+/// (within `eps`), so coplanar polygons never face each other.
+bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps);
+
 }  // namespace gv

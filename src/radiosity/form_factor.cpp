@@ -161,14 +161,6 @@ double pointFormFactorToFront(const Vec3& x, const Plane& plane, const ConvexPol
   return front ? pointToPolygonFormFactor(x, plane.normal, front->vertices) : 0.0;
 }
 
-bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps) {
-  auto anyInFront = [eps](const ConvexPolygon& p, const Plane& plane) {
-    return std::any_of(p.vertices.begin(), p.vertices.end(),
-                       [&](const Vec3& v) { return plane.distance(v) > eps; });
-  };
-  return anyInFront(b, a.plane) && anyInFront(a, b.plane);
-}
-
 std::optional<ExchangingParts> exchangingParts(const ConvexPolygon& a, const ConvexPolygon& b,
                                                const Tolerance& tol) {
   const double eps = tol.length();

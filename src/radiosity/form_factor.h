@@ -25,10 +25,6 @@ double pointToPolygonFormFactor(const Vec3& x, const Vec3& n, std::span<const Ve
 double pointFormFactorToFront(const Vec3& x, const Plane& plane, const ConvexPolygon& source,
                               const Tolerance& tol);
 
-/// Whether two one-sided elements can exchange light at all: false when either lies wholly behind
-/// or on the other's plane (within `eps`), so coplanar elements never face each other.
-bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps);
-
 /// The parts of one-sided polygons `a` and `b` that exchange light: a clipped to the front of b's
 /// plane and b to the front of a's (each unchanged when wholly in front). What formFactor
 /// integrates over, and where visibility samples must lie: a sample behind the other's plane

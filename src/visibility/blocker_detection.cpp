@@ -68,17 +68,6 @@ constexpr uint32_t kWallHider = UINT32_MAX - 1;
 /// keeping it for reuse.
 constexpr size_t kKeptIdsPerChunk = size_t{1} << 22;
 
-/// Some vertex of `b` strictly in front of `a`'s plane, and vice versa: only such pairs can
-/// exchange light front to front.
-bool canFace(const ConvexPolygon& a, const ConvexPolygon& b, double eps) {
-  auto someInFront = [eps](const ConvexPolygon& of, const ConvexPolygon& plane) {
-    for (const Vec3& v : of.vertices)
-      if (plane.plane.distance(v) > eps) return true;
-    return false;
-  };
-  return someInFront(b, a) && someInFront(a, b);
-}
-
 /// Sorts distinct ids in [0, 64 bits.size()): by std::sort when there are few, else by setting
 /// their bits in `bits` (all clear on entry and on return) and reading them back in order, which
 /// is cheaper once the ids are more than a sparse sample of the range.

@@ -15,6 +15,7 @@
 #include "visibility/blocker_detection.h"
 #include "visibility/cell_visibility.h"
 #include "visibility/convex_merge.h"
+#include "visibility/coplanar_grazes.h"
 #include "visibility/live_cells.h"
 #include "visibility/patch_search.h"
 #include "visibility/portal_join.h"
@@ -78,8 +79,9 @@ VisibilityGraph computeVisibility(const Scene& scene, const Subdivision& input,
   st.cellSeconds = secondsSince(start);
 
   const auto patchStart = Clock::now();
-  const std::vector<PatchSearchResult> seen =
+  std::vector<PatchSearchResult> seen =
       searchPatches(scene, sub, cells, threads, options, st);  // §4.2
+  st.coplanarGrazePairs = addCoplanarGrazes(scene, sub.tree.planes, tol, seen);
   st.patchSeconds = secondsSince(patchStart);
 
   detectBlockers(scene, seen, tol, threads, options, graph);  // §5

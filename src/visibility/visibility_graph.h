@@ -79,6 +79,9 @@ struct VisibilityStats {
   /// it (patch_search.cpp: a patch the BSP moved onto a tilted plane, its front looking out
   /// through that opening).
   uint64_t acrossPortalPieces = 0;
+  /// Pairs of nearly coplanar patches facing each other that the searches had not seen both
+  /// ways, added for the blocker stage (visibility/coplanar_grazes.h).
+  uint64_t coplanarGrazePairs = 0;
   double meanBlockersPerPartial = 0;
   double meanShaftCullPerPartial = 0;  ///< patches meeting conv(S, R), over `shaftSamples` pairs
   uint64_t shaftSamples = 0;
