@@ -8,7 +8,7 @@
 namespace gv {
 namespace {
 
-/// Inserts `entry`'s patch into the sorted list with the front flag set; true when the pair was
+/// Puts `patch` in the sorted seen list with the front flag set; true when the pair was
 /// not already seen front to front.
 bool markSeenFront(std::vector<uint32_t>& list, uint32_t patch) {
   auto it = std::lower_bound(list.begin(), list.end(), seenEntry(patch, 0));
