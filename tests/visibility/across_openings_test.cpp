@@ -9,17 +9,14 @@
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "generators/scene_builder.h"
+#include "visibility/listed_pairs.h"
 #include "visibility/propagation.h"
 #include "visibility/ray_oracle.h"
 
 namespace gv {
 namespace {
 
-bool listed(const VisibilityGraph& g, uint32_t a, uint32_t b) {
-  const uint32_t s = std::min(a, b), r = std::max(a, b);
-  return std::any_of(g.interactions.begin(), g.interactions.end(),
-                     [&](const Interaction& in) { return in.s == s && in.r == r; });
-}
+using test::listed;
 
 TEST(AcrossOpenings, RampFaceMovedOntoATiltedFloorSeesTheRoom) {
   // A room x in [0, 100], y in [-50, 100], z up to 50. Its floor: B at z = 0 for y < 0, then A

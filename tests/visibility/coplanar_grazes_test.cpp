@@ -9,17 +9,14 @@
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "generators/scene_builder.h"
+#include "visibility/listed_pairs.h"
 #include "visibility/propagation.h"
 #include "visibility/ray_oracle.h"
 
 namespace gv {
 namespace {
 
-bool listed(const VisibilityGraph& g, uint32_t a, uint32_t b) {
-  const uint32_t s = std::min(a, b), r = std::max(a, b);
-  return std::any_of(g.interactions.begin(), g.interactions.end(),
-                     [&](const Interaction& in) { return in.s == s && in.r == r; });
-}
+using test::listed;
 
 TEST(CoplanarGrazes, TwoPiecesOfOneWallAHairOutOfLineSeeEachOther) {
   Scene scene;

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "generators/scene_builder.h"
+#include "visibility/listed_pairs.h"
 #include "visibility/propagation.h"
 #include "visibility/ray_oracle.h"
 
@@ -42,11 +43,7 @@ TwoRooms twoRooms(double gap) {
   return out;
 }
 
-bool listed(const VisibilityGraph& g, uint32_t a, uint32_t b) {
-  const uint32_t s = std::min(a, b), r = std::max(a, b);
-  return std::any_of(g.interactions.begin(), g.interactions.end(),
-                     [&](const Interaction& in) { return in.s == s && in.r == r; });
-}
+using test::listed;
 
 /// Checks a witness ray with the brute-force ray caster: leaving patch `from`, its first hit is
 /// `wall`, within the contact distance of its start, and past it the ray meets `beyond` from the
