@@ -4,8 +4,6 @@
 // Its pairs with the room above must be listed; on a scene without such wedges nothing is added.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "generators/scene_builder.h"

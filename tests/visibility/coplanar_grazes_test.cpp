@@ -4,8 +4,6 @@
 // meets nothing; on scenes whose coplanar pieces share their plane exactly nothing is added.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "generators/scene_builder.h"
