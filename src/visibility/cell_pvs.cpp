@@ -12,13 +12,16 @@
 #include <bit>
 #include <chrono>
 #include <memory>
+#include <span>
 #include <thread>
 
 #include "geometry/ball.h"
+#include "geometry/ball_tree.h"
 #include "geometry/tolerance.h"
 #include "util/timing.h"
 #include "visibility/cell_set.h"
 #include "visibility/portal_clipping.h"
+#include "visibility/stabbing.h"
 
 namespace gv {
 namespace {
@@ -35,16 +38,41 @@ struct DirectedPortal {
   Winding winding;
   int from = 0, to = 0;
   Vec3 normal;                          // unit, direction of travel (zero if degenerate)
-  Ball ball;                            // holding the winding (target checks)
   double minOffset = 0, maxOffset = 0;  // the slab of normal·x its vertices span
+};
+
+// What a target check (Searcher::mayEnter) reads of one cell: a ball holding all its portals
+// (rejecting them at once), then each portal's ball and points, stored cell by cell in one
+// array each. A check visits many cells in turn; reading them through `portals` and each
+// winding's own allocation cost a cache miss per portal, a third of the cell stage on
+// doom-fd2-map10.
+struct TargetCell {
+  Ball ball;
+  uint32_t exitBegin = 0, exitEnd = 0;  // its exits in Graph::targetExits, outgoing's order
+  // With more than kExitTreeAbove exits (the merged cells of the level's outside: a check that
+  // found none of them crossable tested 21 on average on doom-fd2-map20), a ball hierarchy over
+  // them (items: indices among its exits) in Graph::exitTrees, else kNoTree.
+  uint32_t tree = UINT32_MAX;
+};
+constexpr uint32_t kNoTree = UINT32_MAX;
+constexpr size_t kExitTreeAbove = 8;
+struct TargetExit {
+  Ball ball;
+  uint32_t pointBegin = 0, pointCount = 0;  // its points in Graph::targetPoints
 };
 
 struct Graph {
   std::vector<DirectedPortal> portals;
   std::vector<std::vector<int>> outgoing;  // per cell, directed portals leaving it
-  // Per cell, a ball holding all its portals (target checks reject a cell's portals at once).
-  std::vector<Ball> cellBall;
+  std::vector<TargetCell> targetCells;     // per cell (see TargetCell)
+  std::vector<TargetExit> targetExits;
+  std::vector<Vec3> targetPoints;
+  std::vector<BallTree> exitTrees;
   Tolerance tol;
+
+  std::span<const Vec3> pointsOf(const TargetExit& e) const {
+    return {targetPoints.data() + e.pointBegin, e.pointCount};
+  }
 };
 
 Graph buildGraph(const PortalGraph& graph) {
@@ -69,18 +97,32 @@ Graph buildGraph(const PortalGraph& graph) {
         d.minOffset = std::min(d.minOffset, dot(d.normal, v));
         d.maxOffset = std::max(d.maxOffset, dot(d.normal, v));
       }
-      d.ball = ballAround(d.winding, g.tol);
       g.outgoing[d.from].push_back(static_cast<int>(g.portals.size()));
       g.portals.push_back(std::move(d));
     }
   }
   // A cell's ball: about the mean of its portals' centres, out to the farthest portal ball.
-  g.cellBall.assign(graph.cellCount, Ball{});
+  // (The portals into a cell are the reverses of its exits: the same points.)
+  g.targetCells.resize(graph.cellCount);
+  g.targetExits.reserve(g.portals.size());
   std::vector<Ball> balls;
   for (size_t c = 0; c < graph.cellCount; ++c) {
+    TargetCell& t = g.targetCells[c];
     balls.clear();
-    for (int pi : g.outgoing[c]) balls.push_back(g.portals[pi].ball);
-    g.cellBall[c] = ballAroundBalls(balls, g.tol);
+    t.exitBegin = static_cast<uint32_t>(g.targetExits.size());
+    for (int pi : g.outgoing[c]) {
+      const DirectedPortal& d = g.portals[pi];
+      balls.push_back(ballAround(d.winding, g.tol));
+      g.targetExits.push_back({balls.back(), static_cast<uint32_t>(g.targetPoints.size()),
+                               static_cast<uint32_t>(d.winding.size())});
+      g.targetPoints.insert(g.targetPoints.end(), d.winding.begin(), d.winding.end());
+    }
+    t.exitEnd = static_cast<uint32_t>(g.targetExits.size());
+    t.ball = ballAroundBalls(balls, g.tol);
+    if (balls.size() > kExitTreeAbove) {
+      t.tree = static_cast<uint32_t>(g.exitTrees.size());
+      g.exitTrees.emplace_back(balls, g.tol);
+    }
   }
   return g;
 }
@@ -355,22 +397,38 @@ struct Searcher {
   // last portal's, or a separating plane of the two): no line through the sequence reaches y.
   // `tests` counts the plane tests' calls.
   bool mayEnter(size_t y, uint64_t& tests) {
-    // All of y's portals at once when one plane has the ball of them behind it.
+    // All of y's portals at once when one plane has the ball of them behind it; the planes
+    // with that ball wholly in front are then skipped for its portals, which lie inside it.
     ++tests;
-    if (!stabber.mayCrossLater({}, g.cellBall[y].center, g.cellBall[y].radius)) return false;
+    const LaterPlanes planes{stabber.laterPlanes()};
+    uint64_t inBall = planes.all();
+    const TargetCell& cell = g.targetCells[y];
+    if (!planes.keep(cell.ball.center, cell.ball.radius, {}, inBall)) return false;
     // The portals into y are the reverses of its exits: the same points. The one that let
     // y through last time first: it usually does again, deeper on the same path.
-    const std::vector<int>& exits = g.outgoing[y];
-    const size_t n = exits.size(), first = lastCrossed[y] < n ? lastCrossed[y] : 0;
-    for (size_t k = 0, i = first; k < n; ++k, i = i + 1 == n ? 0 : i + 1) {
+    const TargetExit* exits = g.targetExits.data() + cell.exitBegin;
+    const size_t n = cell.exitEnd - cell.exitBegin, first = lastCrossed[y] < n ? lastCrossed[y] : 0;
+    auto crossable = [&](size_t i, uint64_t mask) {
       ++tests;
-      const DirectedPortal& q = g.portals[exits[i]];
-      if (stabber.mayCrossLater(q.winding, q.ball.center, q.ball.radius)) {
-        lastCrossed[y] = static_cast<uint32_t>(i);
-        return true;
-      }
+      const TargetExit& q = exits[i];
+      if (!planes.keep(q.ball.center, q.ball.radius, g.pointsOf(q), mask)) return false;
+      lastCrossed[y] = static_cast<uint32_t>(i);
+      return true;
+    };
+    if (cell.tree == kNoTree) {
+      for (size_t k = 0, i = first; k < n; ++k, i = i + 1 == n ? 0 : i + 1)
+        if (crossable(i, inBall)) return true;
+      return false;
     }
-    return false;
+    // Many exits: the rest down their ball tree, whose groups are rejected a ball at a time.
+    if (crossable(first, inBall)) return true;
+    return g.exitTrees[cell.tree].findKept(
+        inBall,
+        [&](const Ball& b, BallTree::ItemRange, uint64_t& mask) {
+          ++tests;
+          return planes.keep(b.center, b.radius, {}, mask);
+        },
+        [&](uint32_t i, uint64_t mask) { return i != first && crossable(i, mask); });
   }
 
   // The answer for a branch the budget leaves unexplored (the sequence to `cell`, then r into

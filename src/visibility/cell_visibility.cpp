@@ -155,6 +155,8 @@ void cellPvsVisibility(const Subdivision& sub, int threads, const PropagationOpt
       st.cellStabbingTests ? double(lengthSum) / double(st.cellStabbingTests) : 0;
   st.cellStabbing = pvs.stabbing;
   st.cellSearchesOverBudget = pvs.searchesOverBudget;
+  st.cellTargetTests = pvs.targetTests;
+  st.cellOverBudgetTests = pvs.overBudgetTests;
   cv.flow = std::move(pvs.portalFlow);
 }
 

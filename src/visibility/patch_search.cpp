@@ -477,10 +477,23 @@ class PatchSearch {
     // Per patch, its pieces' cells and the flags that saturate each, side by side: mark() reads
     // them for every flag it sets, and reading the pieces themselves instead (scattered, large)
     // was a sixth of the patch stage on doom-fd1-e3m4.
+    // One bit per piece, cell by cell in each cell tree's order (BallTree::order), set while
+    // the piece is unsaturated: the over-budget answer skips a group of pieces with none set.
+    std::vector<std::vector<uint32_t>> bitOf(sub.cells.size());
+    for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+      bitBase_.push_back(pieceBits_);
+      const std::span<const uint32_t> order = cellTrees_[c].order();
+      bitOf[c].resize(order.size());
+      for (uint32_t pos = 0; pos < order.size(); ++pos) bitOf[c][order[pos]] = pieceBits_ + pos;
+      pieceBits_ += static_cast<uint32_t>(order.size());
+    }
+    unsaturatedPieces_.assign((pieceBits_ + 63) / 64, 0);
+    for (uint32_t c = 0; c < sub.cells.size(); ++c) resetPieceBits(c);
     needsBegin_.reserve(placements_.size() + 1);
     for (const auto& where : placements_) {
       needsBegin_.push_back(static_cast<uint32_t>(needs_.size()));
-      for (auto [cell, k] : where) needs_.push_back({cell, attainable(cellPatches_[cell][k])});
+      for (auto [cell, k] : where)
+        needs_.push_back({cell, bitOf[cell][k], attainable(cellPatches_[cell][k])});
     }
     needsBegin_.push_back(static_cast<uint32_t>(needs_.size()));
   }
@@ -492,7 +505,7 @@ class PatchSearch {
     source_ = s;
     overBudget_ = false;
     // The source's own pieces are never targets: they count as saturated.
-    for (auto [cell, k] : placements_[s]) decrement(cell);
+    for (uint32_t i = needsBegin_[s]; i < needsBegin_[s + 1]; ++i) saturate(needs_[i]);
     for (auto [cell, k] : placements_[s]) {
       const CellPatch& cp = cellPatches_[cell][k];
       if (!cp.facesIn && !cp.interior) continue;  // S's front does not look into this cell
@@ -545,6 +558,7 @@ class PatchSearch {
     for (uint32_t c : touchedCells_) {
       unsaturatedCount_[c] = baseCount_[c];
       if (baseCount_[c] > 0) unsaturated_.insert(c);
+      resetPieceBits(c);
     }
     touchedCells_.clear();
     std::sort(result.seen.begin(), result.seen.end());
@@ -567,6 +581,11 @@ class PatchSearch {
   void setBudgetAnswerByPlanes(bool on) { budgetAnswerByPlanes_ = on; }
 
  private:
+  struct Need {
+    uint32_t cell;
+    uint32_t bit;   // the piece's bit in unsaturatedPieces_
+    uint8_t flags;  // attainable() of the piece there
+  };
   bool exhausted() {
     if (!overBudget_ && stabber_.stats().tests >= budget_) overBudget_ = true;
     return overBudget_;
@@ -598,9 +617,13 @@ class PatchSearch {
     if (!unsaturated_.contains(cell)) return;
     const std::vector<CellPatch>& pieces = cellPatches_[cell];
     const LaterPlanes planes{stabber_.laterPlanes()};
+    const uint32_t base = bitBase_[cell];
     cellTrees_[cell].forEachKept(
         planes.all(),
-        [&](const Ball& b, uint64_t& mask) { return planes.keep(b.center, b.radius, {}, mask); },
+        [&](const Ball& b, BallTree::ItemRange range, uint64_t& mask) {
+          return anyPieceUnsaturated(base + range.begin, base + range.end) &&
+                 planes.keep(b.center, b.radius, {}, mask);
+        },
         [&](uint32_t k, uint64_t mask) {
           const CellPatch& t = pieces[k];
           if (t.patch == source_) return;
@@ -608,6 +631,32 @@ class PatchSearch {
           if ((flags_[t.patch] & f) == f) return;
           if (planes.keep(t.ball.center, t.ball.radius, t.piece.vertices, mask)) mark(t.patch, f);
         });
+  }
+
+  /// A piece now has every flag it can get: nothing more is looked for in it.
+  void saturate(const Need& piece) {
+    unsaturatedPieces_[piece.bit >> 6] &= ~(uint64_t{1} << (piece.bit & 63));
+    decrement(piece.cell);
+  }
+
+  /// Sets the bits of every piece of `cell` again (after a run).
+  void resetPieceBits(uint32_t cell) {
+    const uint32_t end = bitBase_[cell] + static_cast<uint32_t>(cellPatches_[cell].size());
+    for (uint32_t b = bitBase_[cell]; b < end; ++b)
+      unsaturatedPieces_[b >> 6] |= uint64_t{1} << (b & 63);
+  }
+
+  /// Is a bit in [begin, end) set: a piece there still unsaturated?
+  bool anyPieceUnsaturated(uint32_t begin, uint32_t end) const {
+    if (begin >= end) return false;
+    const uint32_t first = begin >> 6, last = (end - 1) >> 6;
+    const uint64_t head = ~uint64_t{0} << (begin & 63);
+    const uint64_t tail = ~uint64_t{0} >> (63 - ((end - 1) & 63));
+    if (first == last) return (unsaturatedPieces_[first] & head & tail) != 0;
+    if (unsaturatedPieces_[first] & head) return true;
+    for (uint32_t w = first + 1; w < last; ++w)
+      if (unsaturatedPieces_[w]) return true;
+    return (unsaturatedPieces_[last] & tail) != 0;
   }
 
   void decrement(uint32_t cell) {
@@ -622,8 +671,8 @@ class PatchSearch {
     if (before == 0) touched_.push_back(t);
     flags_[t] = after;
     for (uint32_t i = needsBegin_[t]; i < needsBegin_[t + 1]; ++i) {
-      const auto [cell, need] = needs_[i];
-      if ((before & need) != need && (after & need) == need) decrement(cell);
+      const uint8_t need = needs_[i].flags;
+      if ((before & need) != need && (after & need) == need) saturate(needs_[i]);
     }
   }
 
@@ -767,10 +816,6 @@ class PatchSearch {
   const std::vector<CellSet>& cellReach_;  // per cell, the cells it may see (empty: unknown)
   PortalSequenceStabber stabber_;
   std::vector<uint8_t> flags_;
-  struct Need {
-    uint32_t cell;
-    uint8_t flags;  // attainable() of the piece there
-  };
   std::vector<Need> needs_;           // per patch, its pieces in placements_'s order
   std::vector<uint32_t> needsBegin_;  // patch t's run: needs_[needsBegin_[t], needsBegin_[t+1])
   std::vector<uint32_t> touched_, touchedCells_;
@@ -779,6 +824,11 @@ class PatchSearch {
   std::vector<std::vector<std::vector<uint32_t>>> partPieces_;
   std::vector<uint8_t> partOnPath_;  // the leaves on the path of visitPart's walk
   std::vector<uint32_t> baseCount_, unsaturatedCount_;
+  // A bit per piece, set while it is unsaturated (cell c's pieces from bitBase_[c] on, in its
+  // tree's order), for the over-budget answer's walk (markWhatTheSequenceMayMeet).
+  std::vector<uint64_t> unsaturatedPieces_;
+  std::vector<uint32_t> bitBase_;
+  uint32_t pieceBits_ = 0;
   CellSet unsaturated_;
   std::deque<CellSet> stack_;  // deque: growing it keeps references to its elements valid
   std::vector<Vec3> scratch_;

@@ -151,6 +151,8 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"patch_searches_over_budget", s.patchSearchesOverBudget},
       {"patch_budget", s.patchBudget},
       {"cell_stabbing_tests", s.cellStabbingTests},
+      {"cell_target_tests", s.cellTargetTests},
+      {"cell_over_budget_tests", s.cellOverBudgetTests},
       {"patch_stabbing_tests", s.patchStabbingTests},
       {"patch_facing_rule_tests", s.patchFacingRuleTests},
       {"mean_patches_seen_per_patch", s.meanPatchesSeen},

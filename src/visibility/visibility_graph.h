@@ -52,7 +52,10 @@ struct VisibilityStats {
   /// The stabbing tests each patch search could run (0: no limit), as patchSequenceBudgetFor
   /// resolved the option.
   uint64_t patchBudget = 0;
-  uint64_t cellStabbingTests = 0;   ///< portal-sequence tests of the cell-to-cell search
+  uint64_t cellStabbingTests = 0;  ///< portal-sequence tests of the cell-to-cell search
+  /// Plane tests of the cell search's target checks, and of its answers to branches left
+  /// unexplored over the budget (CellPvsResult::targetTests, overBudgetTests).
+  uint64_t cellTargetTests = 0, cellOverBudgetTests = 0;
   uint64_t patchStabbingTests = 0;  ///< tests of the patch searches (portals and targets)
   /// Of those, target tests in the source's own cell decided by the two-polygon facing rule
   /// (no portal between: exact without the stabbing kernel; not in patchStabbing).
