@@ -474,9 +474,6 @@ class PatchSearch {
       if (!cellPatches_[c].empty()) unsaturated_.insert(c);
     }
     unsaturatedCount_ = baseCount_;
-    // Per patch, its pieces' cells and the flags that saturate each, side by side: mark() reads
-    // them for every flag it sets, and reading the pieces themselves instead (scattered, large)
-    // was a sixth of the patch stage on doom-fd1-e3m4.
     // One bit per piece, cell by cell in each cell tree's order (BallTree::order), set while
     // the piece is unsaturated: the over-budget answer skips a group of pieces with none set.
     std::vector<std::vector<uint32_t>> bitOf(sub.cells.size());
@@ -489,6 +486,9 @@ class PatchSearch {
     }
     unsaturatedPieces_.assign((pieceBits_ + 63) / 64, 0);
     for (uint32_t c = 0; c < sub.cells.size(); ++c) resetPieceBits(c);
+    // Per patch, its pieces' cells and the flags that saturate each, side by side: mark() reads
+    // them for every flag it sets, and reading the pieces themselves instead (scattered, large)
+    // was a sixth of the patch stage on doom-fd1-e3m4.
     needsBegin_.reserve(placements_.size() + 1);
     for (const auto& where : placements_) {
       needsBegin_.push_back(static_cast<uint32_t>(needs_.size()));
