@@ -43,15 +43,15 @@ struct DirectedPortal {
 
 // What a target check (Searcher::mayEnter) reads of one cell: a ball holding all its portals
 // (rejecting them at once), then each portal's ball and points, stored cell by cell in one
-// array each. A check visits many cells in turn; reading them through `portals` and each
-// winding's own allocation cost a cache miss per portal, a third of the cell stage on
-// doom-fd2-map10.
+// array each. A check visits many cells in turn; read through `portals` and each winding's own
+// allocation, the load of each portal's record was the hottest instruction of the checks on
+// doom-fd2-map10 (a cache miss per portal).
 struct TargetCell {
   Ball ball;
   uint32_t exitBegin = 0, exitEnd = 0;  // its exits in Graph::targetExits, outgoing's order
-  // With more than kExitTreeAbove exits (the merged cells of the level's outside: a check that
-  // found none of them crossable tested 21 on average on doom-fd2-map20), a ball hierarchy over
-  // them (items: indices among its exits) in Graph::exitTrees, else kNoTree.
+  // With more than kExitTreeAbove exits (merged cells: on doom-fd2-map20 a check that found
+  // none of a cell's exits crossable had tested 21 on average), a ball hierarchy over them
+  // (items: indices among its exits) in Graph::exitTrees, else kNoTree.
   uint32_t tree = UINT32_MAX;
 };
 constexpr uint32_t kNoTree = UINT32_MAX;
