@@ -28,48 +28,52 @@ constexpr double kRepeatedNormal = 1e-9;
 
 }  // namespace
 
-void PairHull::addPlane(const Vec3& n, double c) {
+void PairHull::addPlane(const Vec3& n, double c, double touch) {
   for (size_t i = 0; i < c_.size(); ++i)
     if (std::abs(nx_[i] - n.x) <= kRepeatedNormal && std::abs(ny_[i] - n.y) <= kRepeatedNormal &&
-        std::abs(nz_[i] - n.z) <= kRepeatedNormal && std::abs(c_[i] - c) <= eps_)
+        std::abs(nz_[i] - n.z) <= kRepeatedNormal && std::abs(c_[i] - c) <= eps_) {
+      touch_[i] = std::max(touch_[i], touch);  // the stricter separation of the two
       return;
+    }
   nx_.push_back(n.x);
   ny_.push_back(n.y);
   nz_.push_back(n.z);
   c_.push_back(c);
+  touch_.push_back(touch);
 }
 
-void PairHull::consider(const Vec3& n, const Vec3& o) {
+void PairHull::consider(const Vec3& n, const Vec3& o, bool flatAllowed) {
   const double len = length(n);
   if (!(len > 0)) return;
   const Vec3 u = n * (1 / len);
   const Range h = rangeOf(hull_, u, o);
   const double c = dot(u, o);
-  if (h.hi <= eps_) addPlane(u, c);     // hull behind: separates what lies in front
-  if (h.lo >= -eps_) addPlane(-u, -c);  // hull in front: separates what lies behind
+  const double touch = flatAllowed && h.hi - h.lo < kFlatHull * eps_ ? eps_ : -eps_;
+  if (h.hi <= eps_) addPlane(u, c, touch);     // hull behind: separates what lies in front
+  if (h.lo >= -eps_) addPlane(-u, -c, touch);  // hull in front: separates what lies behind
 }
 
 PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Tolerance& tol)
-    : eps_(tol.length()), separationMargin_(-0.5 * tol.length()) {
+    : eps_(tol.length()) {
   box_ = s.bounds();
   box_.add(r.bounds());
   hull_ = s.vertices;
   hull_.insert(hull_.end(), r.vertices.begin(), r.vertices.end());
-  consider(s.plane.normal, s.vertices[0]);
-  consider(r.plane.normal, r.vertices[0]);
+  consider(s.plane.normal, s.vertices[0], true);
+  consider(r.plane.normal, r.vertices[0], true);
   // Side planes through an edge of one polygon and a vertex of the other.
   for (const auto& [e, v] : {std::pair{&s, &r}, std::pair{&r, &s}}) {
     const auto& ev = e->vertices;
     for (size_t i = 0; i < ev.size(); ++i) {
       const Vec3& a = ev[i];
       const Vec3 edge = ev[(i + 1) % ev.size()] - a;
-      for (const Vec3& p : v->vertices) consider(cross(edge, p - a), a);
+      for (const Vec3& p : v->vertices) consider(cross(edge, p - a), a, true);
     }
   }
 }
 
 PairHull::PairHull(const ConvexPolygon& s, const Aabb& around, const Tolerance& tol)
-    : eps_(tol.length()), separationMargin_(3 * tol.length()) {
+    : eps_(tol.length()), shaft_(true) {
   box_ = s.bounds();
   box_.add(around);
   hull_ = s.vertices;
@@ -78,19 +82,19 @@ PairHull::PairHull(const ConvexPolygon& s, const Aabb& around, const Tolerance& 
     corners[k] = {(k & 1) ? around.hi.x : around.lo.x, (k & 2) ? around.hi.y : around.lo.y,
                   (k & 4) ? around.hi.z : around.lo.z};
   hull_.insert(hull_.end(), corners, corners + 8);
-  consider(s.plane.normal, s.vertices[0]);
+  consider(s.plane.normal, s.vertices[0], false);
   // Side planes through an edge of s and a corner, and through an edge of the box and a vertex
   // of s. Any subset of the hull's supporting planes would do: a missing one only separates less.
   const auto& sv = s.vertices;
   for (size_t i = 0; i < sv.size(); ++i) {
     const Vec3 edge = sv[(i + 1) % sv.size()] - sv[i];
-    for (const Vec3& c : corners) consider(cross(edge, c - sv[i]), sv[i]);
+    for (const Vec3& c : corners) consider(cross(edge, c - sv[i]), sv[i], false);
   }
   for (int k = 0; k < 8; ++k)
     for (int axis = 0; axis < 3; ++axis) {
       if (k & (1 << axis)) continue;  // each edge once, from its low corner
       const Vec3 edge = corners[k | (1 << axis)] - corners[k];
-      for (const Vec3& v : sv) consider(cross(edge, v - corners[k]), corners[k]);
+      for (const Vec3& v : sv) consider(cross(edge, v - corners[k]), corners[k], false);
     }
 }
 
@@ -100,15 +104,14 @@ bool PairHull::boxMeets(const Aabb& bBox) const {
 
 bool PairHull::separatesBox(const Aabb& box) const {
   // The least n·x − c over the box, per plane, at the corner the normal points away from. For a
-  // pair, half the tolerance of margin: a vertex v in the box then has n·v − c >= −eps / 2 less
-  // rounding (~1e-16 of the scene), well above meetsInBox's −eps, so that plane separates its
-  // polygon. For a shaft, see separationMargin_.
-  const double margin = separationMargin_;
+  // pair, half the tolerance of margin beyond the plane's touch: a vertex v in the box then has
+  // n·v − c >= touch + eps / 2 less rounding (~1e-16 of the scene), well above meetsInBox's
+  // touch, so that plane separates its polygon. For a shaft, see shaft_.
   for (size_t i = 0; i < c_.size(); ++i) {
     const double least = (nx_[i] >= 0 ? nx_[i] * box.lo.x : nx_[i] * box.hi.x) +
                          (ny_[i] >= 0 ? ny_[i] * box.lo.y : ny_[i] * box.hi.y) +
                          (nz_[i] >= 0 ? nz_[i] * box.lo.z : nz_[i] * box.hi.z) - c_[i];
-    if (least >= margin) return true;
+    if (least >= (shaft_ ? 3 * eps_ : touch_[i] + 0.5 * eps_)) return true;
   }
   return false;
 }
@@ -130,15 +133,15 @@ bool PairHull::meetsInBox(std::span<const Vec3> bv, const Vec3& n, double len) c
   bool deep = true;
   for (size_t i = 0; i < planes; ++i) {
     const double d0 = nx_[i] * v0.x + ny_[i] * v0.y + nz_[i] * v0.z - c_[i];
-    if (d0 < -eps_) {
+    if (d0 < touch_[i]) {
       deep = deep && d0 < -2 * eps_;
       continue;
     }
     deep = false;
-    bool separates = true;  // every vertex of b at or beyond the plane (within eps)
+    bool separates = true;  // every vertex of b at or beyond the plane (within eps, or +eps)
     for (size_t k = 1; k < bv.size(); ++k) {
       const Vec3& v = bv[k];
-      if (nx_[i] * v.x + ny_[i] * v.y + nz_[i] * v.z - c_[i] < -eps_) {
+      if (nx_[i] * v.x + ny_[i] * v.y + nz_[i] * v.z - c_[i] < touch_[i]) {
         separates = false;
         break;
       }

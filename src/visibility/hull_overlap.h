@@ -13,7 +13,14 @@ namespace gv {
 /// conv(s ∪ r), prepared once for the many blocker candidates of one pair.
 ///
 /// `meets(b)` is false only when a plane separates `b` from the hull (touching within
-/// tol.length() counts as separated: it blocks no segment of positive measure). Candidate planes:
+/// tol.length() counts as separated: it blocks no segment of positive measure), except across
+/// the planes the hull is flat against: where the hull is less than kFlatHull tolerances deep
+/// along a plane's normal (s and r nearly coplanar, as the pieces of one ramp a hair out of line
+/// that coplanar_grazes.h pairs), every segment runs within a few tolerances of that plane, and
+/// a patch touching it there (a box standing on the ramp, its edge on the ramp's plane) is the
+/// first hit of a whole family of them (q3-oacmpdm4's pair (2589, 2592) and patch 2600). Across
+/// such a plane b is separated only when it lies beyond the hull grown by the tolerance.
+/// Candidate planes:
 /// the planes of s, r and b, and the hull's side planes through an edge of one polygon and a
 /// vertex of the other. Conservative: a polygon these planes cannot separate is reported as
 /// meeting. Side planes that repeat one another (parallel boxes give each hull face up to four
@@ -53,23 +60,29 @@ class PairHull {
   const Aabb& box() const { return box_; }
   /// Side planes kept (after removing repeats), for tests and statistics.
   size_t planeCount() const { return c_.size(); }
+  /// A hull less deep than this many tolerances along a plane's normal is flat against it.
+  static constexpr double kFlatHull = 1000;
 
  private:
   /// Side planes, unit normal n and offset c, oriented so that the hull lies in n·x − c <= eps:
-  /// a polygon with every vertex at n·x − c >= −eps is separated. Structure of arrays so that
-  /// the loop over planes runs over contiguous doubles.
-  std::vector<double> nx_, ny_, nz_, c_;
+  /// a polygon with every vertex at n·x − c >= touch is separated, touch = −eps, or +eps for a
+  /// plane the hull is flat against (see the class comment). Structure of arrays so that the
+  /// loop over planes runs over contiguous doubles.
+  std::vector<double> nx_, ny_, nz_, c_, touch_;
   std::vector<Vec3> hull_;
   Aabb box_;
   double eps_;
-  /// separatesBox's least distance beyond a plane: −eps / 2 for a pair (its planes are the
-  /// hull's facets, which meetsInBox tests at −eps), 3 eps for a shaft (its hull lies within eps
-  /// behind each plane, so a box this far beyond is 2 eps from every pair hull inside it).
-  double separationMargin_;
+  /// The shaft form (see its constructor): separatesBox then asks a box to lie 3 eps beyond a
+  /// plane (its hull lies within eps behind each plane, so such a box is 2 eps from every pair
+  /// hull inside it); for a pair, touch + eps / 2 (its planes are the hull's facets, which
+  /// meetsInBox tests at touch).
+  bool shaft_ = false;
 
-  void addPlane(const Vec3& n, double c);
+  void addPlane(const Vec3& n, double c, double touch);
   /// Keeps the plane with normal n through o if hull_ lies on one side of it (within eps).
-  void consider(const Vec3& n, const Vec3& o);
+  /// `flatAllowed`: whether a plane the hull is flat against gets the grown test (the pair
+  /// form; the shaft form's planes are only used by separatesBox, with its own margin).
+  void consider(const Vec3& n, const Vec3& o, bool flatAllowed);
 };
 
 /// PairHull(s, r, tol).meets(b): the one-off form.

@@ -7,6 +7,7 @@
 #include "generators/cornell_box.h"
 #include "generators/office.h"
 #include "generators/scene_builder.h"
+#include "visibility/hull_overlap.h"
 #include "visibility/listed_pairs.h"
 #include "visibility/propagation.h"
 #include "visibility/ray_oracle.h"
@@ -48,6 +49,54 @@ TEST(CoplanarGrazes, TwoPiecesOfOneWallAHairOutOfLineSeeEachOther) {
   const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
   EXPECT_TRUE(listed(g, s, r));
   EXPECT_GE(g.stats.coplanarGrazePairs, 1u);
+}
+
+// q3-oacmpdm4's pair (2589, 2592): two pieces of one ramp 3.7e-7 out of line, and a small box
+// standing on the ramp between them, its +x face (2600) resting on the ramp's plane by an edge,
+// the other three crossing it. Every segment between the pieces runs within ~4e-7 of the ramp;
+// the one `verify` found meets face 2600 first, 0.127 from R. The hull of the pair is flat
+// against the ramp's plane, and the face touching that plane must be a blocker (hull_overlap.h).
+TEST(CoplanarGrazes, AFaceRestingOnTheirPlaneBetweenThemIsABlocker) {
+  Scene scene;
+  SceneBuilder b(scene, Tolerance::forBounds(Aabb{{-128, -128, -60}, {128, 80, 60}}));
+  const uint32_t m = scene.addMaterial({"wall", {0.5, 0.5, 0.5}, {}});
+  const std::vector<std::vector<Vec3>> faces = {
+      // 0 (S, 2589) and 1 (R, 2592): the ramp's pieces.
+      {{-45.75, -3, 5.7}, {-45.75, -1, 5.7}, {-46.499999, -1, 6}, {-46.499999, -3, 6}},
+      {{-45, -2.25, 5.4}, {-45, -1.75, 5.4}, {-45.75, -1.75, 5.7}, {-45.75, -2.25, 5.7}},
+      // 2..5: the box's sides, -x (2599), +x (2600, its bottom edge on the ramp), -y, +y.
+      {{-45.5, -2.125, 5.5}, {-45.5, -2.125, 5.75}, {-45.5, -1.875, 5.75}, {-45.5, -1.875, 5.5}},
+      {{-45.25, -1.875, 5.5},
+       {-45.25, -1.875, 5.75},
+       {-45.25, -2.125, 5.75},
+       {-45.25, -2.125, 5.5}},
+      {{-45.25, -2.125, 5.5}, {-45.25, -2.125, 5.75}, {-45.5, -2.125, 5.75}, {-45.5, -2.125, 5.5}},
+      {{-45.5, -1.875, 5.5}, {-45.5, -1.875, 5.75}, {-45.25, -1.875, 5.75}, {-45.25, -1.875, 5.5}},
+  };
+  for (const auto& f : faces) ASSERT_TRUE(b.addPolygon(f, m));
+  // 6, 7: two small faces at the level's far corners, so that the scene's tolerance is the
+  // level's (scene.bounds, 255 across; the pair's hull is less deep than 1000 of it).
+  ASSERT_TRUE(b.addPolygon({{-128, -128, -60}, {-127, -128, -60}, {-127, -127, -60}}, m));
+  ASSERT_TRUE(b.addPolygon({{128, 80, 60}, {127, 80, 60}, {127, 79, 60}}, m));
+  ASSERT_EQ(scene.patches.size(), 8u);
+  const uint32_t s = 0, r = 1, face = 3;
+
+  // The segment `verify` found, from R's front to S's front: its first hit is the +x face.
+  const Vec3 p{-45.15208649058794, -2.1033625986516067, 5.460834596235177};
+  const Vec3 q{-46.38713715232235, -1.208632165970569, 5.954855200735875};
+  EXPECT_GT(dot(q - p, scene.patches[r].polygon.plane.normal), 0);
+  EXPECT_LT(dot(q - p, scene.patches[s].polygon.plane.normal), 0);
+  const auto hit = test::firstHit(scene, p, q - p, 1e-9, 2, r);
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->patch, face);
+  EXPECT_GT(hit->t, 0.05);
+
+  EXPECT_TRUE(meetsConvexHull(scene.patches[face].polygon, scene.patches[s].polygon,
+                              scene.patches[r].polygon, Tolerance::forBounds(scene.bounds())));
+  const Subdivision sub = buildSubdivision(scene);
+  const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
+  ASSERT_TRUE(listed(g, s, r));
+  EXPECT_TRUE(test::hasBlocker(g, s, r, face));
 }
 
 TEST(CoplanarGrazes, NothingIsAddedWhereCoplanarPiecesShareTheirPlane) {

@@ -16,4 +16,13 @@ inline bool listed(const VisibilityGraph& g, uint32_t a, uint32_t b) {
                      [&](const Interaction& in) { return in.s == s && in.r == r; });
 }
 
+/// Whether the pair (a, b) is listed with `blocker` in its blocker list.
+inline bool hasBlocker(const VisibilityGraph& g, uint32_t a, uint32_t b, uint32_t blocker) {
+  const uint32_t s = std::min(a, b), r = std::max(a, b);
+  return std::any_of(g.interactions.begin(), g.interactions.end(), [&](const Interaction& in) {
+    return in.s == s && in.r == r &&
+           std::find(in.blockers.begin(), in.blockers.end(), blocker) != in.blockers.end();
+  });
+}
+
 }  // namespace gv::test
