@@ -6,9 +6,16 @@
 #   scripts/make-test-levels.sh [OUTDIR]
 #   globalvis bench --no-maps --no-offices --levels OUTDIR          # vis, verify, excess
 #   globalvis bench --no-maps --no-offices --levels OUTDIR --radiosity   # and the lit variants
+# With --more, 12 other levels instead (6 Freedoom, 6 OpenArena, plain only; default OUTDIR
+# /tmp/gv-more-levels), kept apart so that they stay unseen while the code is tuned on the first
+# set: run `vis` with its defaults and `verify --rays 1000000 --unlisted-pairs 1000000` on them
+# now and then, as the outside checks do (first run: session 38, docs/BENCHMARKS.md).
+#   scripts/make-test-levels.sh --more [OUTDIR]
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
-out=${1:-/tmp/gv-test-levels}
+more=false
+if [ "$1" = --more ]; then more=true; shift; fi
+if $more; then out=${1:-/tmp/gv-more-levels}; else out=${1:-/tmp/gv-test-levels}; fi
 wads=/usr/share/games/doom
 oa=/usr/share/games/openarena/baseoa
 # Debian packages: freedoom (0.12.1), openarena-081-maps, openarena-oacmp1.
@@ -16,6 +23,18 @@ for f in $wads/freedoom1.wad $wads/freedoom2.wad $oa/pak1-maps.pk3 $oa/z_oacmp-v
   [ -f "$f" ] || { echo "missing $f: install the Debian packages freedoom, openarena-081-maps and openarena-oacmp1" >&2; exit 1; }
 done
 mkdir -p "$out"
+if $more; then
+  python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M3 E2M2 E3M1 -o "$out"
+  python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP04 MAP06 MAP12 -o "$out"
+  for m in oa_dm6 czest1dm wrackdm17 oa_shouse; do
+    python3 "$here/q3bsp_to_obj.py" "$oa/pak1-maps.pk3:maps/$m.bsp" -o "$out" --name "q3-$m"
+  done
+  for m in oacmpdm2 oacmpdm4; do
+    python3 "$here/q3bsp_to_obj.py" "$oa/z_oacmp-volume1-v3.pk3:maps/$m.bsp" -o "$out" --name "q3-$m"
+  done
+  echo "wrote $(ls "$out"/*.obj | wc -l) OBJ files to $out"
+  exit 0
+fi
 python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M1 E1M4 E1M7 E2M1 E3M4 E4M1 -o "$out" --both
 python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP02 MAP05 MAP07 MAP10 MAP15 MAP20 -o "$out" --both
 for m in oa_dm1 oa_dm3 oa_dm4 oa_dm5 oa_dm7 oa_ctf4ish aggressor kaos slimefac hydronex oa_bases3 q3dm6ish; do
