@@ -42,13 +42,13 @@ void PairHull::addPlane(const Vec3& n, double c, double touch) {
   touch_.push_back(touch);
 }
 
-void PairHull::consider(const Vec3& n, const Vec3& o, bool flatAllowed) {
+void PairHull::consider(const Vec3& n, const Vec3& o) {
   const double len = length(n);
   if (!(len > 0)) return;
   const Vec3 u = n * (1 / len);
   const Range h = rangeOf(hull_, u, o);
   const double c = dot(u, o);
-  const double touch = flatAllowed && h.hi - h.lo < kFlatHull * eps_ ? eps_ : -eps_;
+  const double touch = !shaft_ && h.hi - h.lo < kFlatHull * eps_ ? eps_ : -eps_;
   if (h.hi <= eps_) addPlane(u, c, touch);     // hull behind: separates what lies in front
   if (h.lo >= -eps_) addPlane(-u, -c, touch);  // hull in front: separates what lies behind
 }
@@ -59,15 +59,15 @@ PairHull::PairHull(const ConvexPolygon& s, const ConvexPolygon& r, const Toleran
   box_.add(r.bounds());
   hull_ = s.vertices;
   hull_.insert(hull_.end(), r.vertices.begin(), r.vertices.end());
-  consider(s.plane.normal, s.vertices[0], true);
-  consider(r.plane.normal, r.vertices[0], true);
+  consider(s.plane.normal, s.vertices[0]);
+  consider(r.plane.normal, r.vertices[0]);
   // Side planes through an edge of one polygon and a vertex of the other.
   for (const auto& [e, v] : {std::pair{&s, &r}, std::pair{&r, &s}}) {
     const auto& ev = e->vertices;
     for (size_t i = 0; i < ev.size(); ++i) {
       const Vec3& a = ev[i];
       const Vec3 edge = ev[(i + 1) % ev.size()] - a;
-      for (const Vec3& p : v->vertices) consider(cross(edge, p - a), a, true);
+      for (const Vec3& p : v->vertices) consider(cross(edge, p - a), a);
     }
   }
 }
@@ -82,19 +82,19 @@ PairHull::PairHull(const ConvexPolygon& s, const Aabb& around, const Tolerance& 
     corners[k] = {(k & 1) ? around.hi.x : around.lo.x, (k & 2) ? around.hi.y : around.lo.y,
                   (k & 4) ? around.hi.z : around.lo.z};
   hull_.insert(hull_.end(), corners, corners + 8);
-  consider(s.plane.normal, s.vertices[0], false);
+  consider(s.plane.normal, s.vertices[0]);
   // Side planes through an edge of s and a corner, and through an edge of the box and a vertex
   // of s. Any subset of the hull's supporting planes would do: a missing one only separates less.
   const auto& sv = s.vertices;
   for (size_t i = 0; i < sv.size(); ++i) {
     const Vec3 edge = sv[(i + 1) % sv.size()] - sv[i];
-    for (const Vec3& c : corners) consider(cross(edge, c - sv[i]), sv[i], false);
+    for (const Vec3& c : corners) consider(cross(edge, c - sv[i]), sv[i]);
   }
   for (int k = 0; k < 8; ++k)
     for (int axis = 0; axis < 3; ++axis) {
       if (k & (1 << axis)) continue;  // each edge once, from its low corner
       const Vec3 edge = corners[k | (1 << axis)] - corners[k];
-      for (const Vec3& v : sv) consider(cross(edge, v - corners[k]), corners[k], false);
+      for (const Vec3& v : sv) consider(cross(edge, v - corners[k]), corners[k]);
     }
 }
 

@@ -79,10 +79,10 @@ class PairHull {
   bool shaft_ = false;
 
   void addPlane(const Vec3& n, double c, double touch);
-  /// Keeps the plane with normal n through o if hull_ lies on one side of it (within eps).
-  /// `flatAllowed`: whether a plane the hull is flat against gets the grown test (the pair
-  /// form; the shaft form's planes are only used by separatesBox, with its own margin).
-  void consider(const Vec3& n, const Vec3& o, bool flatAllowed);
+  /// Keeps the plane with normal n through o if hull_ lies on one side of it (within eps). In
+  /// the pair form a plane the hull is flat against gets the grown test; the shaft form's planes
+  /// are only used by separatesBox, with its own margin.
+  void consider(const Vec3& n, const Vec3& o);
 };
 
 /// PairHull(s, r, tol).meets(b): the one-off form.
