@@ -95,19 +95,41 @@ Subdivision buildSubdivision(const Scene& scene, const BspOptions& options) {
     if (interior[p]) inside += area;
   }
   s.interiorAreaFraction = total > 0 ? inside / total : 0;
+  std::vector<char> blind(sub.cells.size());
+  size_t sealed = 0, blindPortals = 0;
+  for (size_t c = 0; c < sub.cells.size(); ++c) {
+    blind[c] = !somePatchFacesInto(scene, sub.cells[c]);
+    sealed += sub.cells[c].portals.empty();
+  }
+  for (const Portal& p : sub.portals) blindPortals += blind[p.back] || blind[p.front];
+  s.sealedCellFraction = double(sealed) / double(std::max<size_t>(1, sub.cells.size()));
+  s.blindPortalFraction = double(blindPortals) / double(std::max<size_t>(1, sub.portals.size()));
   return sub;
+}
+
+bool builtOfClosedSolids(const SubdivisionStats& s) {
+  return s.sealedCellFraction >= kClosedSolidsMinSealedCells &&
+         s.blindPortalFraction <= kClosedSolidsMaxBlindPortals;
 }
 
 Subdivision buildVisibilitySubdivision(const Scene& scene, BspOptions options) {
   std::optional<Subdivision> kept;
+  bool closedSolidsDetail = false;  // kept unless the next rule takes most of its inside area
   for (double coverage : kVisibilityCoverageSteps) {
     options.minCoverage = coverage;
     Subdivision sub = buildSubdivision(scene, options);
     if (kept && kept->stats.interiorAreaFraction <= kShatterInteriorAreaFraction &&
         double(sub.stats.portals) > kMaxPortalsPerPatch * double(sub.stats.patches))
       break;
+    if (closedSolidsDetail && sub.stats.interiorAreaFraction * kClosedSolidsMinInteriorReduction >
+                                  kept->stats.interiorAreaFraction)
+      break;
     kept = std::move(sub);
-    if (kept->stats.interiorAreaFraction <= kMaxInteriorAreaFraction) break;
+    const SubdivisionStats& s = kept->stats;
+    if (s.interiorAreaFraction <= kMaxInteriorAreaFraction) break;
+    closedSolidsDetail = coverage < kVisibilityCoverageSteps[0] &&
+                         s.interiorAreaFraction <= kClosedSolidsMaxInteriorAreaFraction &&
+                         builtOfClosedSolids(s);
   }
   return std::move(*kept);
 }

@@ -94,6 +94,12 @@ struct SubdivisionStats {
   /// Of the patches' area, the part inside cells rather than on their boundaries: the surface
   /// the cells do not follow (the searches see it from every side of its cell).
   double interiorAreaFraction = 0;
+  /// Of the cells, those with no portal: the sealed insides of closed solids (brushes), and
+  /// cells cut off whole. Near 0 where walls are one-sided faces with the level's void behind.
+  double sealedCellFraction = 0;
+  /// Of the portals, those opening into a blind cell (no patch faces into it:
+  /// somePatchFacesInto): the void behind one-sided walls, and the level's outside.
+  double blindPortalFraction = 0;
 };
 
 /// Cells + portals = the adjacency graph over cells: two cells are adjacent iff a portal links
@@ -151,11 +157,43 @@ inline constexpr double kMaxInteriorAreaFraction = 0.0625;
 inline constexpr double kMaxPortalsPerPatch = 6.0;
 inline constexpr double kShatterInteriorAreaFraction = 0.5;
 
+/// A level built of closed solids (brush soups: Quake 3 arena levels as OBJ) rather than of
+/// one-sided walls with the void behind them (sector levels, and Quake maps as the .map importer
+/// gives them), as its subdivision shows: at least kClosedSolidsMinSealedCells of the cells
+/// sealed (the solids' insides) and at most kClosedSolidsMaxBlindPortals of the portals opening
+/// into blind cells (the void). There a face the stop rule leaves inside a cell mostly has the
+/// other faces of its solid behind it, still on cell boundaries, so cells that follow fewer
+/// faces cull nearly as much; behind a one-sided wall left inside a cell lies the void, through
+/// which the searches reach everything. Measured on 54 levels at every rule they reach
+/// (2026-12-07, docs/BENCHMARKS.md "Closed solids: coarser cells"), at rules 0.1-0.01: sealed
+/// 0.067-0.29 of the cells on the 23 arena levels, at most 0.051 on the 31 sector levels and
+/// Quake maps; blind portals at most 0.18 on the arena levels, at least 0.27 on the others.
+inline constexpr double kClosedSolidsMinSealedCells = 0.06;
+inline constexpr double kClosedSolidsMaxBlindPortals = 0.25;
+bool builtOfClosedSolids(const SubdivisionStats& stats);
+
+/// On a level built of closed solids, a rule finer than the coarsest that leaves at most
+/// kClosedSolidsMaxInteriorAreaFraction of the area inside its cells is kept unless the next
+/// rule leaves less than 1/kClosedSolidsMinInteriorReduction of that inside: what the next
+/// rules would put on cell boundaries is then small detail, not walls, and their extra cells
+/// mostly slice open space, where the cell searches fan out. Measured against the finer rules
+/// the old choice took (one thread, 2026-12-07): q3-czest1dm at 0.1 (18.6 % inside, the next
+/// rule 11.9 %) 959,981 pairs in 38.7 s against 961,764 in 145 s at rule 0; q3-oacmpdm4
+/// (22.9 %, next 17.2 %) +4.4 % pairs in 11.8 s against 74 s; q3-oa_dm6 (20.7 %, 11.9 %) +2.5 %
+/// in 13.5 s against 41.7 s; q3-oa_shouse (29.9 %, 14.2 %) +4.7 % in 37 s against 434 s. Not
+/// kept: q3-oa_dm4 at 0.1 (15.3 %, next 0.9 %) listed 13 % more pairs, q3-oa_dm3 (35.4 %, next
+/// 5.6 %) 38 % more. Both bounds sit between the levels measured (kept: the next rule leaves
+/// 0.30-0.75 of the inside area on 11 levels; not kept: 0.06-0.16), not at a proven edge.
+inline constexpr double kClosedSolidsMaxInteriorAreaFraction = 1.0 / 3.0;
+inline constexpr double kClosedSolidsMinInteriorReduction = 4.0;
+
 /// `vis`'s cells: buildSubdivision with each stop rule of kVisibilityCoverageSteps in turn
 /// (`options.minCoverage` is not read), keeping the first whose cells hold at most
-/// kMaxInteriorAreaFraction of the patches' area inside them, or the last before one with more
-/// than kMaxPortalsPerPatch portals per patch if that one leaves at most
-/// kShatterInteriorAreaFraction inside. The coarse rule suits buildings (the default
+/// kMaxInteriorAreaFraction of the patches' area inside them, or on a level builtOfClosedSolids
+/// the first finer than the coarsest that leaves at most kClosedSolidsMaxInteriorAreaFraction
+/// inside and whose next rule would not divide that by kClosedSolidsMinInteriorReduction, or
+/// the last before one with more than kMaxPortalsPerPatch portals per patch if that one leaves
+/// at most kShatterInteriorAreaFraction inside. The coarse rule suits buildings (the default
 /// office: 4 % inside, 0.04 s); real levels need the finer ones (a sector level is one cell at
 /// 0.3 and 0.1; an arena level 84 % inside at 0.3, 5 % at 0.1). Every build is cheap next to the
 /// searches; the progress callback sees each.

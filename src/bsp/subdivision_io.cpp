@@ -88,6 +88,8 @@ nlohmann::json statsJson(const SubdivisionStats& s) {
           {"mean_portals_per_cell", s.meanPortalsPerCell},
           {"min_coverage", s.minCoverage},
           {"interior_area_fraction", s.interiorAreaFraction},
+          {"sealed_cell_fraction", s.sealedCellFraction},
+          {"blind_portal_fraction", s.blindPortalFraction},
           {"bsp_seconds", s.bspSeconds},
           {"portal_seconds", s.portalSeconds}};
 }

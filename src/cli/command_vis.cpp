@@ -123,9 +123,11 @@ Action addVisCommand(CLI::App& app) {
     const uint64_t listed = v.pairsVisible + v.pairsPartial;
     fmt::print(
         "patches {}  cells {}  portals {}  (stop rule {}, {:.1f} % of the patch area inside "
-        "cells; BSP {:.3f} s, portals {:.3f} s)\n",
+        "cells{}; BSP {:.3f} s, portals {:.3f} s)\n",
         sub.stats.patches, sub.stats.cells, sub.stats.portals, sub.stats.minCoverage,
-        100 * sub.stats.interiorAreaFraction, sub.stats.bspSeconds, sub.stats.portalSeconds);
+        100 * sub.stats.interiorAreaFraction,
+        builtOfClosedSolids(sub.stats) ? ", built of closed solids" : "", sub.stats.bspSeconds,
+        sub.stats.portalSeconds);
     if (v.cellsBeforeMerge != v.cells)
       fmt::print(
           "searched {} cells and {} portals (of {} and {}: neighbours with a convex union, and "

@@ -123,6 +123,31 @@ inline Scene randomClutter(uint32_t seed, int boxes, int quads) {
   return std::move(m.scene);
 }
 
+/// A closed room of solid walls 0.5 thick around the air [0,20] x [0,20] x [0,6], holding a
+/// grid of n x n crates (closed boxes 0.4-1 m wide, `step` apart, a third of them raised off
+/// the floor): a level of closed solids whose small detail no coarse stop rule splits on.
+inline Scene cratesInAClosedRoom(int n, double step) {
+  const double w = 20, h = 6, t = 0.5;
+  SceneMaker m(boxOf({-t, -t, -t}, {w + t, w + t, h + t}));
+  auto& b = m.builder;
+  b.addBox({-t, -t, -t}, {w + t, w + t, 0}, m.grey);
+  b.addBox({-t, -t, h}, {w + t, w + t, h + t}, m.grey);
+  b.addBox({-t, -t, 0}, {0, w + t, h}, m.grey);
+  b.addBox({w, -t, 0}, {w + t, w + t, h}, m.grey);
+  b.addBox({0, -t, 0}, {w, 0, h}, m.grey);
+  b.addBox({0, w, 0}, {w, w + t, h}, m.grey);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const int k = (i * 7 + j * 3) % 5;
+      const double size = 0.4 + 0.15 * k, height = 0.3 + 0.25 * ((i * 3 + j * 5) % 4);
+      const double x = 1 + step * i + 0.3 * ((i + 2 * j) % 3);
+      const double y = 1 + step * j + 0.3 * ((2 * i + j) % 3);
+      const double z = (i + j) % 3 ? 0 : 1.5 + 0.5 * k;
+      b.addBox({x, y, z}, {x + size, y + size, z + height}, m.grey);
+    }
+  return std::move(m.scene);
+}
+
 /// The scene with every vertex mapped to origin + scale * p (to test huge and tiny coordinates).
 inline Scene transformed(const Scene& in, double scale, const Vec3& origin) {
   Aabb box;
