@@ -43,9 +43,7 @@ std::pair<double, Ended> expectedRule(const Scene& scene) {
     keptInside = sub.stats.interiorAreaFraction;
     const SubdivisionStats& s = sub.stats;
     if (s.interiorAreaFraction <= kMaxInteriorAreaFraction) return {kept, Ended::ByInteriorRule};
-    const bool closed = s.sealedCellFraction >= kClosedSolidsMinSealedCells &&
-                        s.blindPortalFraction <= kClosedSolidsMaxBlindPortals;
-    closedDetail = coverage != kVisibilityCoverageSteps[0] && closed &&
+    closedDetail = coverage != kVisibilityCoverageSteps[0] && builtOfClosedSolids(s) &&
                    s.interiorAreaFraction <= kClosedSolidsMaxInteriorAreaFraction;
   }
   return {kept, Ended::AtTheFinestRule};
