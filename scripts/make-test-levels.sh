@@ -11,11 +11,23 @@
 # set: run `vis` with its defaults and `verify --rays 1000000 --unlisted-pairs 1000000` on them
 # now and then, as the outside checks do (first run: session 38, docs/BENCHMARKS.md).
 #   scripts/make-test-levels.sh --more [OUTDIR]
+# With --third, a third set of 16 (6 Freedoom, 10 OpenArena, plain only; default OUTDIR
+# /tmp/gv-third-levels), first run unseen in session 40 (docs/BENCHMARKS.md): among them an
+# outdoor island of 30,501 faces and a 242-face box, at both ends of the sizes.
+#   scripts/make-test-levels.sh --third [OUTDIR]
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
 more=false
+third=false
 if [ "$1" = --more ]; then more=true; shift; fi
-if $more; then out=${1:-/tmp/gv-more-levels}; else out=${1:-/tmp/gv-test-levels}; fi
+if [ "$1" = --third ]; then third=true; shift; fi
+if $more; then
+  out=${1:-/tmp/gv-more-levels}
+elif $third; then
+  out=${1:-/tmp/gv-third-levels}
+else
+  out=${1:-/tmp/gv-test-levels}
+fi
 wads=/usr/share/games/doom
 oa=/usr/share/games/openarena/baseoa
 # Debian packages: freedoom (0.12.1), openarena-081-maps, openarena-oacmp1.
@@ -23,6 +35,15 @@ for f in $wads/freedoom1.wad $wads/freedoom2.wad $oa/pak1-maps.pk3 $oa/z_oacmp-v
   [ -f "$f" ] || { echo "missing $f: install the Debian packages freedoom, openarena-081-maps and openarena-oacmp1" >&2; exit 1; }
 done
 mkdir -p "$out"
+if $third; then
+  python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M5 E2M4 E3M6 -o "$out"
+  python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP08 MAP13 MAP18 -o "$out"
+  for m in oa_minia delta suspended ce1m7 fan islanddm oa_spirit3 sleekgrinder oa_pvomit kaos2; do
+    python3 "$here/q3bsp_to_obj.py" "$oa/pak1-maps.pk3:maps/$m.bsp" -o "$out" --name "q3-$m"
+  done
+  echo "wrote $(ls "$out"/*.obj | wc -l) OBJ files to $out"
+  exit 0
+fi
 if $more; then
   python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M3 E2M2 E3M1 -o "$out"
   python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP04 MAP06 MAP12 -o "$out"
