@@ -17,17 +17,9 @@
 #   scripts/make-test-levels.sh --third [OUTDIR]
 set -e
 here=$(cd "$(dirname "$0")" && pwd)
-more=false
-third=false
-if [ "$1" = --more ]; then more=true; shift; fi
-if [ "$1" = --third ]; then third=true; shift; fi
-if $more; then
-  out=${1:-/tmp/gv-more-levels}
-elif $third; then
-  out=${1:-/tmp/gv-third-levels}
-else
-  out=${1:-/tmp/gv-test-levels}
-fi
+set_=test
+case "$1" in --more | --third) set_=${1#--}; shift ;; esac
+out=${1:-/tmp/gv-$set_-levels}
 wads=/usr/share/games/doom
 oa=/usr/share/games/openarena/baseoa
 # Debian packages: freedoom (0.12.1), openarena-081-maps, openarena-oacmp1.
@@ -35,7 +27,7 @@ for f in $wads/freedoom1.wad $wads/freedoom2.wad $oa/pak1-maps.pk3 $oa/z_oacmp-v
   [ -f "$f" ] || { echo "missing $f: install the Debian packages freedoom, openarena-081-maps and openarena-oacmp1" >&2; exit 1; }
 done
 mkdir -p "$out"
-if $third; then
+if [ $set_ = third ]; then
   python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M5 E2M4 E3M6 -o "$out"
   python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP08 MAP13 MAP18 -o "$out"
   for m in oa_minia delta suspended ce1m7 fan islanddm oa_spirit3 sleekgrinder oa_pvomit kaos2; do
@@ -44,7 +36,7 @@ if $third; then
   echo "wrote $(ls "$out"/*.obj | wc -l) OBJ files to $out"
   exit 0
 fi
-if $more; then
+if [ $set_ = more ]; then
   python3 "$here/wad_to_obj.py" $wads/freedoom1.wad E1M3 E2M2 E3M1 -o "$out"
   python3 "$here/wad_to_obj.py" $wads/freedoom2.wad MAP04 MAP06 MAP12 -o "$out"
   for m in oa_dm6 czest1dm wrackdm17 oa_shouse; do
