@@ -19,7 +19,6 @@
 #include "radiosity/patch_clusters.h"
 #include "radiosity/polygon_sampling.h"
 #include "util/check.h"
-#include "util/ordered_buckets.h"
 #include "util/parallel_for.h"
 #include "util/timing.h"
 
@@ -734,24 +733,31 @@ class Solver {
     });
     const std::vector<char> changed = changedSince(receiverPass_);
     auto looked = [&](uint32_t e) { return isExamined[e] != 0 && changed[e] != 0; };
-    // Per element looked at, its links in link order (a counting sort, in parallel: ends[linksAt[e]
-    // .. linksAt[e + 1])); and the ends looked at whose deviations are not yet known: a pass
-    // needs only its own elements' (inconsistentLinksAt reads no other).
-    std::vector<uint32_t> linksAt, ends;
-    bucketInOrder<uint32_t>(
-        links_.size(), n,
-        [&](size_t i, auto put) {
-          const Link& l = links_[i];
-          if (looked(l.a)) put(l.a, static_cast<uint32_t>(i));
-          if (looked(l.b)) put(l.b, static_cast<uint32_t>(i));
-        },
-        linksAt, ends);
-    const std::vector<LinkEnd> missing =
-        collectInOrder<LinkEnd>(links_.size(), [&](size_t i, auto put) {
-          const Link& l = links_[i];
-          if (looked(l.a) && l.deviationsAtA == UINT32_MAX) put({static_cast<uint32_t>(i), true});
-          if (looked(l.b) && l.deviationsAtB == UINT32_MAX) put({static_cast<uint32_t>(i), false});
-        });
+    std::vector<uint32_t> linksAt(n + 1, 0);
+    for (const Link& l : links_) {
+      if (looked(l.a)) ++linksAt[l.a + 1];
+      if (looked(l.b)) ++linksAt[l.b + 1];
+    }
+    for (size_t e = 0; e < n; ++e) linksAt[e + 1] += linksAt[e];
+    // The same walk finds the ends looked at whose deviations are not yet known: a pass needs
+    // only its own elements' (inconsistentLinksAt reads no other), and a second walk of every
+    // link for them cost as much as this one.
+    std::vector<uint32_t> ends(linksAt[n]);
+    std::vector<LinkEnd> missing;
+    {
+      std::vector<uint32_t> at(linksAt.begin(), linksAt.end() - 1);
+      for (uint32_t i = 0; i < links_.size(); ++i) {
+        const Link& l = links_[i];
+        if (looked(l.a)) {
+          ends[at[l.a]++] = i;
+          if (l.deviationsAtA == UINT32_MAX) missing.push_back({i, true});
+        }
+        if (looked(l.b)) {
+          ends[at[l.b]++] = i;
+          if (l.deviationsAtB == UINT32_MAX) missing.push_back({i, false});
+        }
+      }
+    }
     computeChildDeviations(missing);
     // Per element, the links to refine, in parallel (each reads only); a link wanted at both
     // ends is split at the lower element id.
@@ -932,11 +938,10 @@ class Solver {
     };
     // The links into a receiver looked at, in link order (so each receiver's sum adds the same
     // terms in the same order as over all links).
-    const std::vector<uint32_t> looked =
-        collectInOrder<uint32_t>(links_.size(), [&](size_t i, auto put) {
-          if (links_[i].tapCount == 0 && (changed[links_[i].a] || changed[links_[i].b]))
-            put(static_cast<uint32_t>(i));
-        });
+    std::vector<uint32_t> looked;
+    for (uint32_t i = 0; i < links_.size(); ++i)
+      if (links_[i].tapCount == 0 && (changed[links_[i].a] || changed[links_[i].b]))
+        looked.push_back(i);
     std::vector<Entry> entries(2 * looked.size());
     parallelForEach(looked.size(), [&](size_t k) {
       const uint32_t i = looked[k];
@@ -1002,14 +1007,15 @@ class Solver {
       bool ofA;
       std::vector<uint32_t> pieces;
     };
-    std::vector<Missing> missing = collectInOrder<Missing>(links_.size(), [&](size_t i, auto put) {
+    std::vector<Missing> missing;
+    for (uint32_t i = 0; i < links_.size(); ++i) {
       const Link& l = links_[i];
-      if (l.tapCount > 0) return;
+      if (l.tapCount > 0) continue;
       for (const bool ofA : {true, false})
         if ((ofA ? l.sourcePiecesOfA : l.sourcePiecesOfB) == UINT32_MAX &&
             !tree_[ofA ? l.a : l.b].isLeaf())
-          put({static_cast<uint32_t>(i), ofA, {}});
-    });
+          missing.push_back({i, ofA, {}});
+    }
     // The pieces of each end in parallel (a walk down the tree per end, most of this pass's
     // time on big scenes when it ran serially), then placed in link order.
     parallelForEach(missing.size(), [&](size_t k) {
@@ -1135,37 +1141,49 @@ class Solver {
   GatherLists gatherLists() const {
     GatherLists g;
     const size_t n = tree_.size();
-    // Counting sorts by receiver, in parallel (util/ordered_buckets.h: the same lists a serial
-    // walk gives), over the links without taps, then over the taps of links and cluster links.
-    bucketInOrder<std::pair<uint32_t, double>>(
-        links_.size(), n,
-        [&](size_t i, auto put) {
-          const Link& l = links_[i];
-          if (l.tapCount != 0) return;
-          put(l.a, {l.b, l.formFactorAB});
-          put(l.b, {l.a, l.formFactorBA});
-        },
-        g.linkBegin, g.linkTerms);
-    // Partial: each clear sample carries its share from the part of one element it ends on to
-    // the part of the other (see Tap). Cluster links: each clear sample from the element it left
-    // to the patch it reached.
-    bucketInOrder<std::pair<uint32_t, float>>(
-        links_.size() + clusterLinks_.size(), n,
-        [&](size_t i, auto put) {
-          if (i < links_.size()) {
-            const Link& l = links_[i];
-            for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
-              const Tap& tap = taps_[t];
-              put(tap.a, {tap.fromB, tap.intoA});
-              put(tap.b, {tap.fromA, tap.intoB});
-            }
-            return;
-          }
-          const ClusterLink& c = clusterLinks_[i - links_.size()];
-          for (uint32_t t = c.tapBegin; t < c.tapBegin + c.tapCount; ++t)
-            put(clusterTaps_[t].receiver, {clusterTaps_[t].source, clusterTaps_[t].coefficient});
-        },
-        g.tapBegin, g.tapTerms);
+    g.linkBegin.assign(n + 1, 0);
+    g.tapBegin.assign(n + 1, 0);
+    for (const Link& l : links_) {
+      if (l.tapCount == 0) {
+        ++g.linkBegin[l.a + 1];
+        ++g.linkBegin[l.b + 1];
+        continue;
+      }
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        ++g.tapBegin[taps_[t].a + 1];
+        ++g.tapBegin[taps_[t].b + 1];
+      }
+    }
+    for (const ClusterLink& c : clusterLinks_)
+      for (uint32_t t = c.tapBegin; t < c.tapBegin + c.tapCount; ++t)
+        ++g.tapBegin[clusterTaps_[t].receiver + 1];
+    for (size_t e = 0; e < n; ++e) {
+      g.linkBegin[e + 1] += g.linkBegin[e];
+      g.tapBegin[e + 1] += g.tapBegin[e];
+    }
+    g.linkTerms.resize(g.linkBegin[n]);
+    g.tapTerms.resize(g.tapBegin[n]);
+    std::vector<uint32_t> linkAt(g.linkBegin.begin(), g.linkBegin.end() - 1);
+    std::vector<uint32_t> tapAt(g.tapBegin.begin(), g.tapBegin.end() - 1);
+    for (const Link& l : links_) {
+      if (l.tapCount == 0) {
+        g.linkTerms[linkAt[l.a]++] = {l.b, l.formFactorAB};
+        g.linkTerms[linkAt[l.b]++] = {l.a, l.formFactorBA};
+        continue;
+      }
+      // Partial: each clear sample carries its share from the part of one element it ends on to
+      // the part of the other (see Tap).
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        const Tap& tap = taps_[t];
+        g.tapTerms[tapAt[tap.a]++] = {tap.fromB, tap.intoA};
+        g.tapTerms[tapAt[tap.b]++] = {tap.fromA, tap.intoB};
+      }
+    }
+    // Cluster links: each clear sample from the element it left to the patch it reached.
+    for (const ClusterLink& c : clusterLinks_)
+      for (uint32_t t = c.tapBegin; t < c.tapBegin + c.tapCount; ++t)
+        g.tapTerms[tapAt[clusterTaps_[t].receiver]++] = {clusterTaps_[t].source,
+                                                         clusterTaps_[t].coefficient};
     return g;
   }
 
