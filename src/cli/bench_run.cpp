@@ -283,6 +283,7 @@ void benchLitLevel(const std::string& litPath, const BenchOptions& options, Benc
   const PhotonComparison c =
       comparePhotons(scene, result->patchRadiosity, reference, kDefaultSigmas, kDefaultAllowance);
   row.photonL2 = c.l2Reflected;
+  row.photonNoiseL2 = c.l2PhotonNoise;
   row.leaks = c.leakSurfaces;
   if (c.worstRegion) row.worstRegion = c.worstRegion->relative;
   row.regionsCompared = c.regionsCompared;

@@ -59,6 +59,8 @@ struct BenchRow {
   /// area-weighted L2 of B − Ke, surfaces lit where the tracer expected >= 10 hits and got none,
   /// the worst region's signed relative error, and the reference's time.
   std::optional<double> photonL2, worstRegion, photonSeconds;
+  /// What the photon reference's own noise alone gives photonL2 (PhotonComparison::l2PhotonNoise).
+  std::optional<double> photonNoiseL2;
   std::optional<size_t> leaks;
   /// The region channels the worst region was taken over, of all occupied ones (the others are
   /// noisy or hold under 0.1 % of the reflected power).

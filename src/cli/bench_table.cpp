@@ -129,8 +129,11 @@ std::string benchTableMarkdown(const std::vector<BenchRow>& rows) {
     auto percent = [](const std::optional<double>& v, const char* format) {
       return cell(v ? std::optional<double>(100 * *v) : std::nullopt, format);
     };
-    columns.push_back({"L2 of B−Ke vs photons",
-                       "--:", [=](const BenchRow& r) { return percent(r.photonL2, "{:.2f} %"); }});
+    columns.push_back({"L2 of B−Ke vs photons (their noise alone)", "--:", [=](const BenchRow& r) {
+                         std::string text = percent(r.photonL2, "{:.2f} %");
+                         if (r.photonNoiseL2) text += percent(r.photonNoiseL2, " ({:.2f} %)");
+                         return text;
+                       }});
     columns.push_back(
         {"leaks", "--:", [](const BenchRow& r) { return countCell(widen(r.leaks)); }});
     columns.push_back({"worst region (of compared)", "--:", [=](const BenchRow& r) {
@@ -197,6 +200,7 @@ nlohmann::json benchRowJson(const BenchRow& r) {
       {"mean_blockers_per_partial", orNull(r.meanBlockers)},
       {"excess", orNull(r.excess)},
       {"photon_l2_reflected", orNull(r.photonL2)},
+      {"photon_l2_noise", orNull(r.photonNoiseL2)},
       {"photon_leak_surfaces", orNull(r.leaks)},
       {"photon_worst_region", orNull(r.worstRegion)},
       {"photon_regions_compared", orNull(r.regionsCompared)},

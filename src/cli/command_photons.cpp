@@ -70,11 +70,12 @@ nlohmann::json regionsJson(const PhotonComparison& c) {
 void printCounts(const nlohmann::json& c) {
   const auto& n = c["channels"];
   fmt::print(
-      "L2 of B-Ke over all {} patches and channels: {:.2f} % ({} surfaces, {} coincident twin "
-      "groups of {} patches)\n",
+      "L2 of B-Ke over all {} patches and channels: {:.2f} % (the photons' own noise alone: about "
+      "{:.2f} %; {} surfaces, {} coincident twin groups of {} patches)\n",
       c["surfaces"].get<size_t>() - c["twin_groups"].get<size_t>() +
           c["twin_patches"].get<size_t>(),
       c["l2_reflected"].is_number() ? 100 * c["l2_reflected"].get<double>() : INFINITY,
+      c["l2_photon_noise"].is_number() ? 100 * c["l2_photon_noise"].get<double>() : INFINITY,
       c["surfaces"].get<size_t>(), c["twin_groups"].get<size_t>(), c["twin_patches"].get<size_t>());
   fmt::print(
       "channels: {} = {} compared + {} left out as noisy ({}) + {} without a photon ({} leaks, {} "
@@ -248,6 +249,7 @@ Action addPhotonsCommand(CLI::App& app) {
                              {"sigmas", s->sigmas},
                              {"allowance", s->allowance},
                              {"l2_reflected", c.l2Reflected},
+                             {"l2_photon_noise", c.l2PhotonNoise},
                              {"surfaces", c.surfaces},
                              {"twin_groups", c.twinGroups},
                              {"twin_patches", c.twinPatches},

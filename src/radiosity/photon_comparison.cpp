@@ -230,7 +230,9 @@ PhotonComparison comparePhotons(const Scene& scene, const std::vector<Rgb>& solv
   c.worstLeaks.assign(leaks.begin(), leaks.begin() + static_cast<ptrdiff_t>(shown));
 
   // The headline figure: every patch, each held to its surface's photon estimate.
-  double num = 0, den = 0;
+  // Beside it, what the photons' own noise contributes (the expected Σ A (p − p̄)² of the
+  // estimates, from their standard errors).
+  double num = 0, den = 0, noise = 0;
   for (const Surface& f : surfaces)
     for (const uint32_t p : f.patches) {
       const double a = scene.patches[p].polygon.area();
@@ -240,10 +242,14 @@ PhotonComparison comparePhotons(const Scene& scene, const std::vector<Rgb>& solv
         const double d = s[ch] - ke[ch] - f.photonReflected[ch];
         num += a * d * d;
         den += a * f.photonReflected[ch] * f.photonReflected[ch];
+        noise += a * f.photonError[ch] * f.photonError[ch];
       }
     }
-  c.l2Reflected =
-      den > 0 ? std::sqrt(num / den) : (num > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  const auto ratio = [&](double x) {
+    return den > 0 ? std::sqrt(x / den) : (x > 0 ? std::numeric_limits<double>::infinity() : 0.0);
+  };
+  c.l2Reflected = ratio(num);
+  c.l2PhotonNoise = ratio(noise);
 
   compareRegions(c, scene, surfaces, regionSize);
   return c;

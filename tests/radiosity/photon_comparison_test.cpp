@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
+#include "generators/cornell_box.h"
 #include "radiosity/photon_reference.h"
 #include "raycast/embree_scene.h"
 
@@ -115,6 +117,10 @@ TEST(PhotonComparisonTest, RegionOffAsAWholeIsFoundWhenTheL2IsSmall) {
   const double l2 = std::sqrt((8 * 0.01 + 0.16 + 0.25 + 4e-4) / (9 + 4 + 900 + 1 + 1e-4));
   EXPECT_NEAR(c.l2Reflected, l2, 1e-9);
   EXPECT_LT(c.l2Reflected, 0.03);
+  // The photons' own noise: Σ A σ² = 9 × 1e-6 + 4e-6 + 900 × 1e-6 + 0.04 + 1e-4 × 1e-6, over the
+  // same Σ A p².
+  EXPECT_NEAR(c.l2PhotonNoise, std::sqrt((9e-6 + 4e-6 + 9e-4 + 0.04 + 1e-10) / (914 + 1e-4)),
+              1e-12);
   ASSERT_TRUE(c.worstRegion.has_value());
   EXPECT_NEAR(c.worstRegion->relative, 0.2, 1e-9);
   EXPECT_EQ(c.worstRegion->low, (Vec3{3, 0, 0}));
@@ -133,6 +139,37 @@ TEST(PhotonComparisonTest, RegionOffAsAWholeIsFoundWhenTheL2IsSmall) {
   ASSERT_TRUE(big.worstRegion.has_value());
   EXPECT_NEAR(big.worstRegion->relative, 0.4 / 11, 1e-9);
   EXPECT_EQ(big.worstRegion->patches, 10u);
+}
+
+TEST(PhotonComparisonTest, PhotonNoiseIsWhatASecondPhotonRunScores) {
+  // Two independent light-tracing runs of one scene: the second, held to the first as a solution
+  // would be, differs by both runs' noise, so its squared L2 should be about twice the first's
+  // l2PhotonNoise² (each patch is its own surface here: no twins). One pair scatters widely (0.63
+  // to 1.36 times √2 × noise over six pairs of seeds: the area weights make a few big patches
+  // count most), so four independent pairs are pooled. A bound, not a ratchet: a noise figure
+  // missing its square root, its area weights or its normalisation lands far outside it.
+  const Scene scene = generateCornellBox();
+  const EmbreeScene bvh(scene);
+  double pooled = 0;
+  for (uint64_t seed = 1; seed <= 7; seed += 2) {
+    PhotonOptions first, second;
+    first.photons = second.photons = 200'000;
+    first.seed = seed;
+    second.seed = seed + 1;
+    const PhotonResult a = photonReference(scene, bvh, first);
+    const PhotonResult b = photonReference(scene, bvh, second);
+    const PhotonComparison c = comparePhotons(scene, b.radiosity, a, 4, 0.01);
+    ASSERT_EQ(c.twinGroups, 0u);
+    ASSERT_GT(c.l2PhotonNoise, 0);
+    const double ratio = c.l2Reflected / (std::sqrt(2.0) * c.l2PhotonNoise);
+    std::printf("seeds %llu, %llu: L2 %.4f, noise alone %.4f, L2 / (sqrt(2) noise) %.3f\n",
+                static_cast<unsigned long long>(seed), static_cast<unsigned long long>(seed + 1),
+                c.l2Reflected, c.l2PhotonNoise, ratio);
+    pooled += ratio * ratio / 4;
+  }
+  std::printf("pooled: %.3f\n", std::sqrt(pooled));
+  EXPECT_GT(std::sqrt(pooled), 0.7);
+  EXPECT_LT(std::sqrt(pooled), 1.4);
 }
 
 TEST(PhotonComparisonTest, CoincidentTwinsAreOneSurface) {
