@@ -23,6 +23,7 @@
 #include "util/progress_bar.h"
 #include "util/timing.h"
 #include "visibility/cell_pvs.h"
+#include "visibility/patch_cell_reach.h"
 #include "visibility/propagation.h"
 #include "visibility/verify.h"
 
@@ -121,20 +122,32 @@ std::string skipped(const std::string& stages, const Budget& b) {
   return fmt::format("{} skipped: {:g} s budget spent", stages, b.maxSeconds());
 }
 
-/// Solves radiosity as `radiosity` does by default (rays visibility) and records its figures
-/// and checks in `row`; nullopt when the budget stopped it.
+/// Solves radiosity as `radiosity` does by default (rays visibility; from
+/// kMinPatchesForCellCulling patches on, links only between patches whose cells may see each
+/// other, with a threshold per room) and records its figures and checks in `row`; nullopt when
+/// the budget stopped it. The seconds include the cell stage, as the command's time does.
 std::optional<RadiosityResult> benchRadiosity(const Scene& scene, const EmbreeScene& bvh,
                                               const BenchOptions& options, const Budget& budget,
                                               BenchRow& row) {
   try {
-    ProgressBar bar(row.name + ": radiosity refinement");
-    RayVisibility visibility(scene, bvh, kBenchRadiosityRays);
     RadiosityOptions ro;
     applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
     ro.threads = options.threads;
-    ro.refineProgress = watch(bar, budget);
     const bool peakReset = resetPeakResident();
     const auto t0 = Clock::now();
+    std::unique_ptr<PatchCellReach> cellReach;
+    if (scene.patches.size() >= kMinPatchesForCellCulling) {
+      BspOptions bsp;
+      bsp.minCoverage = kVisibilityMinCoverage;  // `radiosity`'s (and `vis`'s) choice of cells
+      const Subdivision sub = buildVisibilitySubdivision(scene, bsp);
+      PropagationOptions propagation;
+      propagation.threads = options.threads;
+      cellReach = std::make_unique<PatchCellReach>(scene, sub, propagation);
+      if (cellReach->known()) ro.thresholdPower = cellReach->powerInView(scene.emittedPower());
+    }
+    RayVisibility visibility(scene, bvh, kBenchRadiosityRays, cellReach.get());
+    ProgressBar bar(row.name + ": radiosity refinement");
+    ro.refineProgress = watch(bar, budget);
     RadiosityResult result = solveRadiosity(scene, visibility, ro);
     row.radiositySeconds = secondsSince(t0);
     if (peakReset) row.radiosityPeakBytes = peakResidentBytes();

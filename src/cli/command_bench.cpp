@@ -144,7 +144,8 @@ Action addBenchCommand(CLI::App& app) {
                   "coarsest of its steps whose cells follow the scene")
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--radiosity", s->options.radiosity,
-                "Also solve radiosity (rays visibility, 16 rays per link, the default --quality)");
+                "Also solve radiosity as `radiosity` does by default (rays visibility, 16 rays per "
+                "link, the default --quality, links culled by cells from 1000 patches on)");
   cmd->add_option("--threads", s->options.threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024));
   cmd->add_option("--update-docs", s->updateDocs,

@@ -32,13 +32,6 @@
 
 namespace gv::cli {
 
-/// `rays` mode culls by cells only from this many patches on. Below it every pair is cheap to
-/// link, while the cell stage can cost more than the whole solve: the furnished room (384
-/// patches, furniture cutting its air into 170 cells and 520 portals) spent 0.6 s there against
-/// 0.3 s for all of `--quality draft`; the default office (423) gains little (its cells see 97 %
-/// of its pairs).
-constexpr size_t kMinPatchesForCellCulling = 1000;
-
 Action addRadiosityCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "radiosity",
