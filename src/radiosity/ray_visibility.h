@@ -16,13 +16,6 @@ namespace gv {
 /// a segment leaving their plane, so nothing real is lost.
 inline constexpr double kRayEndOffset = 1e-6;
 
-/// `rays` mode. Visible when all rays reach, Invisible when none does (HSA91 then drops the link;
-/// a light path narrower than the ray spacing can be missed: the sampling error the paper's
-/// conservative blocker lists remove), Partial otherwise.
-///
-/// With cells (PatchCellReach), only the pairs whose cells may see each other are candidates: no
-/// link and no cluster sample between rooms that cannot see each other (the rays would all be
-/// blocked there anyway, so the solution is the same up to sampling, at a fraction of the rays).
 /// `radiosity`'s rays mode (and `bench`'s radiosity, which runs what it runs) culls by cells
 /// only from this many patches on. Below it every pair is cheap to link, while the cell stage
 /// can cost more than the whole solve: the furnished room (384 patches, furniture cutting its
@@ -30,6 +23,13 @@ inline constexpr double kRayEndOffset = 1e-6;
 /// draft`; the default office (423) gains little (its cells see 97 % of its pairs).
 inline constexpr size_t kMinPatchesForCellCulling = 1000;
 
+/// `rays` mode. Visible when all rays reach, Invisible when none does (HSA91 then drops the link;
+/// a light path narrower than the ray spacing can be missed: the sampling error the paper's
+/// conservative blocker lists remove), Partial otherwise.
+///
+/// With cells (PatchCellReach), only the pairs whose cells may see each other are candidates: no
+/// link and no cluster sample between rooms that cannot see each other (the rays would all be
+/// blocked there anyway, so the solution is the same up to sampling, at a fraction of the rays).
 class RayVisibility final : public LinkVisibility {
  public:
   /// `scene`, `rays` (the shared BVH) and `cells` (if given) must outlive this. `raysPerLink`

@@ -145,9 +145,9 @@ TEST(PhotonComparisonTest, PhotonNoiseIsWhatASecondPhotonRunScores) {
   // Two independent light-tracing runs of one scene: the second, held to the first as a solution
   // would be, differs by both runs' noise, so its squared L2 should be about twice the first's
   // l2PhotonNoise² (each patch is its own surface here: no twins). One pair scatters widely (0.63
-  // to 1.36 times √2 × noise over six pairs of seeds: the area weights make a few big patches
-  // count most), so four independent pairs are pooled. A bound, not a ratchet: a noise figure
-  // missing its square root, its area weights or its normalisation lands far outside it.
+  // to 1.36 times √2 × noise over the eleven pairs of seeds tried: the area weights make a few
+  // big patches count most), so four independent pairs are pooled. A bound, not a ratchet: a noise
+  // figure missing its square root, its area weights or its normalisation lands far outside it.
   const Scene scene = generateCornellBox();
   const EmbreeScene bvh(scene);
   double pooled = 0;
