@@ -122,10 +122,11 @@ std::string skipped(const std::string& stages, const Budget& b) {
   return fmt::format("{} skipped: {:g} s budget spent", stages, b.maxSeconds());
 }
 
-/// Solves radiosity as `radiosity` does by default (rays visibility; from
+/// Solves radiosity as `radiosity` does by default on a level (rays visibility; from
 /// kMinPatchesForCellCulling patches on, links only between patches whose cells may see each
-/// other, with a threshold per room) and records its figures and checks in `row`; nullopt when
-/// the budget stopped it. The seconds include the cell stage, as the command's time does.
+/// other, with a threshold per room; the link budget from the machine's memory) and records its
+/// figures and checks in `row`; nullopt when the budget stopped it. Its seconds are the cell
+/// stage and the solve (the command counts the first in `visibility_seconds`, with its BVH).
 std::optional<RadiosityResult> benchRadiosity(const Scene& scene, const EmbreeScene& bvh,
                                               const BenchOptions& options, const Budget& budget,
                                               BenchRow& row) {
@@ -133,15 +134,21 @@ std::optional<RadiosityResult> benchRadiosity(const Scene& scene, const EmbreeSc
     RadiosityOptions ro;
     applyRadiosityQuality(kDefaultRadiosityQuality, ro);  // what `radiosity` runs by default
     ro.threads = options.threads;
+    ro.maxLinks = linkBudgetForMemory(usableMemoryBytes());
     const bool peakReset = resetPeakResident();
     const auto t0 = Clock::now();
     std::unique_ptr<PatchCellReach> cellReach;
     if (scene.patches.size() >= kMinPatchesForCellCulling) {
+      ProgressBar cellBar(row.name + ": radiosity, cells");
       BspOptions bsp;
-      bsp.minCoverage = kVisibilityMinCoverage;  // `radiosity`'s (and `vis`'s) choice of cells
-      const Subdivision sub = buildVisibilitySubdivision(scene, bsp);
+      bsp.progress = [&](double) {
+        if (budget.spent()) throw BudgetExceeded{};
+      };
+      const Subdivision sub = buildVisibilitySubdivision(scene, bsp);  // `radiosity`'s cells
       PropagationOptions propagation;
       propagation.threads = options.threads;
+      propagation.cellProgress = watch(cellBar, budget);
+      propagation.deadline = budget.deadline();
       cellReach = std::make_unique<PatchCellReach>(scene, sub, propagation);
       if (cellReach->known()) ro.thresholdPower = cellReach->powerInView(scene.emittedPower());
     }
@@ -158,6 +165,9 @@ std::optional<RadiosityResult> benchRadiosity(const Scene& scene, const EmbreeSc
     row.radiosityHash = fmt::format("{:016x}", radiosityHash(result));
     return result;
   } catch (const BudgetExceeded&) {
+    row.notes.push_back(overBudget("radiosity", budget));
+    return std::nullopt;
+  } catch (const PropagationDeadlineExceeded&) {
     row.notes.push_back(overBudget("radiosity", budget));
     return std::nullopt;
   }

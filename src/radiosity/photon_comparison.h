@@ -87,10 +87,11 @@ struct PhotonComparison {
   /// patch with twins is held to its surface's photon estimate (the headline figure).
   double l2Reflected = 0;
   /// What the reference's own noise adds to l2Reflected: sqrt(Σ A σ² / Σ A p²), σ the standard
-  /// error of the photon estimate each patch is held to. An exact solution would score about
-  /// this; the solver's own error is about sqrt(l2Reflected² − l2PhotonNoise²). On a level of
-  /// thousands of small patches 1.6·10^7 photons leave a floor of several percent
-  /// (q3-oa_pvomit, 16 M photons: 6.5 % alone, against its 7.3 %).
+  /// error of the photon estimate each patch is held to. An exact solution would score this in
+  /// expectation (its squared L2 is l2PhotonNoise² on average), so the solver's own error is
+  /// about sqrt(l2Reflected² − l2PhotonNoise²) when l2Reflected is clearly above it. On a level
+  /// of thousands of small patches 1.6·10^7 photons leave several percent (q3-oa_pvomit: 6.5 %
+  /// alone, against its 7.3 %).
   double l2PhotonNoise = 0;
   size_t surfaces = 0;     ///< patches, each group of coincident twins counted once
   size_t twinGroups = 0;   ///< surfaces of more than one patch
