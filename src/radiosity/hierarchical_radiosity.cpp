@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -43,6 +44,11 @@ double maxChannel(const Rgb& x) {
 
 /// The rule of three: N agreeing samples bound the missed fraction by ~3 / N (95 %).
 constexpr double kSampleBound = 3.0;
+
+/// The most a leaf may gather through taps, as a sum of their coefficients: a hemisphere's
+/// form factor. Over it, sampling has concentrated light on the leaf, and two such leaves
+/// facing each other make the Jacobi sweeps diverge (Solver::refreshTaps).
+constexpr double kMaxTapGather = 1.0;
 
 /// Where a Partial link's light passes: one clear sample of its visibility, as the elements its
 /// two ends lie in and the form factors that carry the sample's share of the link between them.
@@ -1099,33 +1105,93 @@ class Solver {
   /// saw, through 5 clear samples, the dark overhanging end of a 205-unit ceiling whose lit end
   /// was cut into 240 leaves later, and gathered the whole ceiling's mean, 40x its end's
   /// radiosity (a patch lit where light tracing found none). So before each solve every tap's
-  /// source descends to the deepest element at its point, and its receiver as deep as the rule
-  /// it was made with allows.
+  /// source descends to the deepest element at its point.
+  ///
+  /// The receivers land at the deepest element at their point too: the light a sample carries
+  /// arrives where the sample ended. Landing it over a piece of its link's end (makeLink's rule,
+  /// pieces of the sample's share of the link) spreads the light that enters a slot at its
+  /// mouth over the slot's depth, where it escapes less often: the slot then traps light, and
+  /// the back of a cabinet standing 0.089 from a wall was twice as bright as light tracing in
+  /// its middle (bench/scenes/cabinet_slot.obj). Landing at a point can concentrate one tap's
+  /// light on a leaf far smaller than its stratum, so that the leaf gathers more than a whole
+  /// hemisphere could give it (coefficients summing over 1) and the solve diverges (it did on
+  /// q3-sleekgrinder, whose run grew to 6.7 GB): liftConcentratedTaps puts the taps of such
+  /// leaves back at makeLink's rule.
   void refreshTaps() {
     auto descend = [&](uint32_t& source, const StoredPoint& at) {
       if (!tree_[source].isLeaf()) source = tree_.deepestContaining(source, at.point());
-    };
-    // The receivers likewise, down to pieces of the sample's share of the link's end (makeLink's
-    // rule), the coefficient rescaled to the new receiver's area: the light lands where the
-    // sample ended, not spread over the coarser element it was made on.
-    auto land = [&](uint32_t& receiver, float& into, const StoredPoint& at, double minArea) {
-      if (tree_[receiver].isLeaf()) return;
-      const uint32_t deeper = tree_.deepestContaining(receiver, at.point(), minArea);
-      into = static_cast<float>(into * tree_[receiver].area / tree_[deeper].area);
-      receiver = deeper;
     };
     parallelForEach(links_.size(), [&](size_t i) {
       const Link& l = links_[i];
       for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
         Tap& tap = taps_[t];
-        land(tap.a, tap.intoA, tap.atA, tree_[l.a].area * tap.share);
-        land(tap.b, tap.intoB, tap.atB, tree_[l.b].area * tap.share);
+        landTap(tap.a, tap.intoA, tap.atA, l.a, 0.0);
+        landTap(tap.b, tap.intoB, tap.atB, l.b, 0.0);
         descend(tap.fromA, tap.atA);
         descend(tap.fromB, tap.atB);
       }
     });
     parallelForEach(clusterTaps_.size(),
                     [&](size_t t) { descend(clusterTaps_[t].source, clusterTaps_[t].at); });
+  }
+
+  /// Moves a tap's receiver to the deepest element of `end` at its point no smaller than
+  /// `minArea` (0: the leaf there), the coefficient rescaled to the new receiver's area (the
+  /// same light over a different piece).
+  void landTap(uint32_t& receiver, float& into, const StoredPoint& at, uint32_t end,
+               double minArea) const {
+    uint32_t landed = receiver;
+    if (minArea > 0)
+      landed = tree_.deepestContaining(end, at.point(), minArea);
+    else if (!tree_[receiver].isLeaf())
+      landed = tree_.deepestContaining(receiver, at.point());
+    if (landed == receiver) return;
+    into = static_cast<float>(into * tree_[receiver].area / tree_[landed].area);
+    receiver = landed;
+  }
+
+  /// After refreshTaps: the leaves whose taps alone give them more than a whole hemisphere
+  /// could (their coefficients summing over kMaxTapGather) have had light concentrated on them
+  /// by sampling; their taps go back to makeLink's rule, pieces of their sample's share of the
+  /// link's end. Those pieces are coarser than the leaf, so no leaf gains a tap and one pass
+  /// suffices. Counts the taps moved.
+  void liftConcentratedTaps(RefinementStats& round) {
+    // Summed from all threads in any order: in fixed point, so that the sums, and the taps
+    // lifted, are the same on any number of threads.
+    constexpr double kOne = 4294967296.0;  // 2^32
+    auto fixed = [&](float c) { return static_cast<uint64_t>(std::min<double>(c, 1e6) * kOne); };
+    std::vector<std::atomic<uint64_t>> gather(tree_.size());
+    parallelForEach(links_.size(), [&](size_t i) {
+      const Link& l = links_[i];
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        gather[taps_[t].a].fetch_add(fixed(taps_[t].intoA), std::memory_order_relaxed);
+        gather[taps_[t].b].fetch_add(fixed(taps_[t].intoB), std::memory_order_relaxed);
+      }
+    });
+    parallelForEach(clusterTaps_.size(), [&](size_t t) {
+      gather[clusterTaps_[t].receiver].fetch_add(fixed(clusterTaps_[t].coefficient),
+                                                 std::memory_order_relaxed);
+    });
+    const auto limit = static_cast<uint64_t>(kMaxTapGather * kOne);
+    auto over = [&](uint32_t e) {
+      return tree_[e].isLeaf() && gather[e].load(std::memory_order_relaxed) > limit;
+    };
+    std::vector<uint32_t> lifted(links_.size(), 0);
+    parallelForEach(links_.size(), [&](size_t i) {
+      const Link& l = links_[i];
+      for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
+        Tap& tap = taps_[t];
+        if (over(tap.a)) {
+          landTap(tap.a, tap.intoA, tap.atA, l.a, tree_[l.a].area * tap.share);
+          ++lifted[i];
+        }
+        if (over(tap.b)) {
+          landTap(tap.b, tap.intoB, tap.atB, l.b, tree_[l.b].area * tap.share);
+          ++lifted[i];
+        }
+      }
+    });
+    for (const uint32_t n : lifted) round.tapsLifted += n;
   }
 
   /// Who gathers what, per receiving element e: the terms linkBegin[e] .. linkBegin[e + 1] of
@@ -1198,6 +1264,7 @@ class Solver {
   bool solve(RefinementStats& round) {
     const auto t0 = Clock::now();
     refreshTaps();
+    liftConcentratedTaps(round);
     const GatherLists lists = gatherLists();
     const size_t patches = tree_.patchCount();
     std::vector<SweepChange> changes(patches);

@@ -165,6 +165,9 @@ struct RefinementStats {
   size_t clusterPairsInvisible = 0;
   int sweeps = 0;  ///< Jacobi sweeps of the solve that followed
   double solveSeconds = 0;
+  /// Taps the solve moved off leaves they gave more than a hemisphere could (their clear
+  /// samples concentrated there; Solver::liftConcentratedTaps), back to coarser pieces.
+  size_t tapsLifted = 0;
 };
 
 /// Totals of a run.

@@ -82,7 +82,8 @@ nlohmann::json radiosityStatsJson(const RadiosityStats& stats, const RadiosityOp
                       {"rays", r.rays},
                       {"refine_seconds", r.refineSeconds},
                       {"solve_sweeps", r.sweeps},
-                      {"solve_seconds", r.solveSeconds}});
+                      {"solve_seconds", r.solveSeconds},
+                      {"taps_lifted", r.tapsLifted}});
   }
   return {{"visibility", stats.visibility},
           {"threads", stats.threads},

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include "generators/cornell_box.h"
 #include "generators/office.h"
@@ -183,6 +184,76 @@ TEST(RadiosityPhotonTest, PartialLinksGatherThePartOfTheSourceInView) {
     EXPECT_LT(ev, 0.01 * mv);
     EXPECT_NEAR(s, mv, 0.03 * mv + 4 * ev) << "channel " << ch;
   }
+}
+
+/// bench/scenes/cabinet_slot.obj with the cabinet's back cut into three upright strips: a 5 x 5 x 3
+/// room lit by a ceiling panel, and a cabinet whose back stands 0.089 from the wall x = 5,
+/// across a slot open at its top and its two ends.
+Scene cabinetSlotInStrips() {
+  Scene scene;
+  const uint32_t wall = scene.addMaterial({"wall", {0.75, 0.73, 0.68}, {}});
+  const uint32_t floor = scene.addMaterial({"floor", {0.45, 0.4, 0.35}, {}});
+  const uint32_t ceiling = scene.addMaterial({"ceiling", {0.8, 0.8, 0.78}, {}});
+  const uint32_t cabinet = scene.addMaterial({"cabinet", {0.5, 0.55, 0.6}, {}});
+  const uint32_t light = scene.addMaterial({"light", {0.8, 0.8, 0.8}, {10, 10, 10}});
+  Aabb box;
+  box.add({0, 0, 0});
+  box.add({5, 5, 3});
+  SceneBuilder b(scene, Tolerance::forBounds(box));
+  b.addAxisRect(0, true, {0, 0, 0}, {0, 5, 3}, wall);
+  b.addAxisRect(0, false, {5, 0, 0}, {5, 5, 3}, wall);
+  b.addAxisRect(1, true, {0, 0, 0}, {5, 0, 3}, wall);
+  b.addAxisRect(1, false, {0, 5, 0}, {5, 5, 3}, wall);
+  b.addAxisRect(2, true, {0, 0, 0}, {5, 5, 0}, floor);
+  b.addAxisRect(2, false, {0, 0, 3}, {5, 5, 3}, ceiling);
+  b.addAxisRect(2, false, {2, 2, 2.98}, {3, 3, 2.98}, light);
+  const double x0 = 4.2, x1 = 4.911, y0 = 2.2, y1 = 2.76, top = 1.716;
+  b.addAxisRect(0, false, {x0, y0, 0}, {x0, y1, top}, cabinet);
+  for (const auto& [lo, hi] : {std::pair{2.2, 2.34}, {2.34, 2.62}, {2.62, 2.76}})
+    b.addAxisRect(0, true, {x1, lo, 0}, {x1, hi, top}, cabinet);
+  b.addAxisRect(1, false, {x0, y0, 0}, {x1, y0, top}, cabinet);
+  b.addAxisRect(1, true, {x0, y1, 0}, {x1, y1, top}, cabinet);
+  b.addAxisRect(2, true, {x0, y0, top}, {x1, y1, top}, cabinet);
+  return splitAtContacts(std::move(scene));
+}
+
+TEST(RadiosityPhotonTest, LightEnteringASlotLandsWhereItEnters) {
+  // Light reaches the slot behind the cabinet through its mouths, mostly through links from the
+  // room that are Partial, whose few clear samples pass the mouths. Each sample's light used to
+  // be spread over a piece of the receiver as large as the sample's share of the link's light
+  // (the whole receiver, for a link with one clear sample): the light entering at the slot's
+  // ends was spread over its middle, where it escapes less often, and the slot trapped it. The
+  // middle strip of the cabinet's back was 1.86x light tracing (rays, `high`, this test).
+  // Landing each sample's light at the leaf it ends on: 1.29x (measured 2026-12-07). The bound
+  // 1.6 lies between the two; the rest of the excess is the crevice bias that remains (a
+  // ratchet, not a bound on what is right: light tracing is the answer).
+  const Scene scene = cabinetSlotInStrips();
+  size_t middle = scene.patches.size();
+  for (size_t p = 0; p < scene.patches.size(); ++p) {
+    const ConvexPolygon& poly = scene.patches[p].polygon;
+    const Vec3 c = poly.centroid();
+    if (poly.plane.normal.x > 0.99 && std::abs(c.x - 4.911) < 1e-6 && std::abs(c.y - 2.48) < 1e-6)
+      middle = p;
+  }
+  ASSERT_LT(middle, scene.patches.size());
+  const EmbreeScene bvh(scene);
+  RayVisibility visibility(scene, bvh, 16);
+  RadiosityOptions options;
+  applyRadiosityQuality(RadiosityQuality::High, options);
+  const RadiosityResult r = solveRadiosity(scene, visibility, options);
+  EXPECT_TRUE(r.stats.converged);
+  PhotonOptions po;
+  po.photons = 4'000'000;
+  const PhotonResult ref = photonReference(scene, bvh, po);
+  const double solver = r.patchRadiosity[middle].r, photons = ref.radiosity[middle].r;
+  const double error = ref.standardError[middle].r;
+  std::printf("middle of the slot: solver %.4g, photons %.4g +- %.2g: x%.2f\n", solver, photons,
+              error, solver / photons);
+  RecordProperty("slot_middle_over_photons", std::to_string(solver / photons));
+  ASSERT_GT(photons, 0.0);
+  EXPECT_LT(error, 0.03 * photons);  // the reference can tell
+  EXPECT_LT(solver / photons, 1.6);
+  EXPECT_GT(solver / photons, 0.8);
 }
 
 TEST(RadiosityPhotonTest, CeilingOverALampSeesTheDarkTopsOfPillarsNotTheirMeans) {
