@@ -53,21 +53,22 @@ constexpr double kMaxTapGather = 1.0;
 /// Where a Partial link's light passes: one clear sample of its visibility, as the elements its
 /// two ends lie in and the form factors that carry the sample's share of the link between them.
 /// Each direction has its own pair: the source is the deepest element at the sample's end (its
-/// radiosity there, not its parent's mean), the receiver the deepest no smaller than the
-/// sample's share of its link end (see finishLink). A link hands its receiver the source's
-/// mean radiosity, spread evenly; when part of the path is blocked, the part of the source in
-/// view is often not its average and the lit part of the receiver not all of it (a ceiling
-/// patch spanning a lit room and a dark corridor sees only the room's floor). Gathering through
-/// the taps keeps that correlation: a one-room office was 4.2 % dark against light tracing
-/// through the means, 1.6 % through taps. Shares sum to the link's visibility fraction, so each
-/// element's total gather (its mean) is unchanged; only where it lands and from where moves.
+/// radiosity there, not its parent's mean), the receiver the leaf there when the solve runs
+/// (see refreshTaps; finishLink's coarser piece when that would concentrate light). A link
+/// hands its receiver the source's mean radiosity, spread evenly; when part of the path is
+/// blocked, the part of the source in view is often not its average and the lit part of the
+/// receiver not all of it (a ceiling patch spanning a lit room and a dark corridor sees only
+/// the room's floor). Gathering through the taps keeps that correlation: a one-room office was
+/// 4.2 % dark against light tracing through the means, 1.6 % through taps. Shares sum to the
+/// link's visibility fraction, so each element's total gather (its mean) is unchanged; only
+/// where it lands and from where moves.
 struct Tap {
   uint32_t a = 0, b = 0;  ///< receivers at the sample's ends (descendants of the link's a and b)
   uint32_t fromA = 0, fromB = 0;  ///< sources at the sample's ends (a's and b's deepest there)
   float intoA = 0;       ///< tap.a gathers intoA · B(tap.fromB): F_ab · share · A_a / A_tap.a
   float intoB = 0;       ///< tap.b gathers intoB · B(tap.fromA)
   StoredPoint atA, atB;  ///< the sample's ends, where fromA and fromB are re-found once cut further
-  float share = 0;       ///< the sample's share of its link: how deep a receiver may go (makeLink)
+  float share = 0;       ///< the sample's share of its link: the receiver's piece when lifted
 };
 
 /// A link to make between elements a and b, refining a link whose oracle state was `tube`;
@@ -343,8 +344,10 @@ class Solver {
       // than that share of the element concentrates it there: an irradiance many times the
       // unoccluded link's on a tiny element, rows of the gather summing over 1, and a solve that
       // diverges (lit-doom-fd2-map03 with clusters, whose pairs of patches are linked only after
-      // the first round has cut them deep). So a tap ends no deeper than pieces of that share:
-      // no tap hands its element more than the link's unoccluded form factor.
+      // the first round has cut them deep). So a tap starts no deeper than pieces of that
+      // share: no tap hands its element more than the link's unoccluded form factor. Before
+      // each solve, refreshTaps lands it at its leaf and liftConcentratedTaps brings back here
+      // the taps that concentrate light.
       const double fraction = std::max(v.fraction, 1e-300);
       for (const ClearSample& c : v.clearSamples) {
         const double share = c.weight / fraction;
@@ -1153,13 +1156,15 @@ class Solver {
   /// After refreshTaps: the leaves whose taps alone give them more than a whole hemisphere
   /// could (their coefficients summing over kMaxTapGather) have had light concentrated on them
   /// by sampling; their taps go back to makeLink's rule, pieces of their sample's share of the
-  /// link's end. Those pieces are coarser than the leaf, so no leaf gains a tap and one pass
-  /// suffices. Counts the taps moved.
+  /// link's end. Those pieces are no finer than the leaf (a tap moves up off it or stays), so no
+  /// leaf gains a tap and one pass suffices. Counts the taps moved.
   void liftConcentratedTaps(RefinementStats& round) {
     // Summed from all threads in any order: in fixed point, so that the sums, and the taps
     // lifted, are the same on any number of threads.
     constexpr double kOne = 4294967296.0;  // 2^32
-    auto fixed = [&](float c) { return static_cast<uint64_t>(std::min<double>(c, 1e6) * kOne); };
+    auto fixed = [](float c) {
+      return c > 0 ? static_cast<uint64_t>(std::min<double>(c, 1e6) * kOne) : uint64_t{0};
+    };
     std::vector<std::atomic<uint64_t>> gather(tree_.size());
     parallelForEach(links_.size(), [&](size_t i) {
       const Link& l = links_[i];
@@ -1181,14 +1186,10 @@ class Solver {
       const Link& l = links_[i];
       for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
         Tap& tap = taps_[t];
-        if (over(tap.a)) {
-          landTap(tap.a, tap.intoA, tap.atA, l.a, tree_[l.a].area * tap.share);
-          ++lifted[i];
-        }
-        if (over(tap.b)) {
-          landTap(tap.b, tap.intoB, tap.atB, l.b, tree_[l.b].area * tap.share);
-          ++lifted[i];
-        }
+        const uint32_t a = tap.a, b = tap.b;
+        if (over(a)) landTap(tap.a, tap.intoA, tap.atA, l.a, tree_[l.a].area * tap.share);
+        if (over(b)) landTap(tap.b, tap.intoB, tap.atB, l.b, tree_[l.b].area * tap.share);
+        lifted[i] += (tap.a != a) + (tap.b != b);
       }
     });
     for (const uint32_t n : lifted) round.tapsLifted += n;
