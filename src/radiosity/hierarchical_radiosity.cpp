@@ -1128,8 +1128,8 @@ class Solver {
       const Link& l = links_[i];
       for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
         Tap& tap = taps_[t];
-        landTap(tap.a, tap.intoA, tap.atA, l.a, 0.0);
-        landTap(tap.b, tap.intoB, tap.atB, l.b, 0.0);
+        landTap(tap.a, tap.intoA, tap.atA);
+        landTap(tap.b, tap.intoB, tap.atB);
         descend(tap.fromA, tap.atA);
         descend(tap.fromB, tap.atB);
       }
@@ -1138,32 +1138,42 @@ class Solver {
                     [&](size_t t) { descend(clusterTaps_[t].source, clusterTaps_[t].at); });
   }
 
-  /// Moves a tap's receiver to the deepest element of `end` at its point no smaller than
-  /// `minArea` (0: the leaf there), the coefficient rescaled to the new receiver's area (the
-  /// same light over a different piece).
-  void landTap(uint32_t& receiver, float& into, const StoredPoint& at, uint32_t end,
-               double minArea) const {
-    uint32_t landed = receiver;
-    if (minArea > 0)
-      landed = tree_.deepestContaining(end, at.point(), minArea);
-    else if (!tree_[receiver].isLeaf())
-      landed = tree_.deepestContaining(receiver, at.point());
-    if (landed == receiver) return;
-    into = static_cast<float>(into * tree_[receiver].area / tree_[landed].area);
-    receiver = landed;
+  /// Moves a tap's receiver down to the leaf at its point, the coefficient rescaled to the new
+  /// receiver's area (the same light over a smaller piece).
+  void landTap(uint32_t& receiver, float& into, const StoredPoint& at) const {
+    if (tree_[receiver].isLeaf()) return;
+    const uint32_t leaf = tree_.deepestContaining(receiver, at.point());
+    into = static_cast<float>(into * tree_[receiver].area / tree_[leaf].area);
+    receiver = leaf;
+  }
+
+  /// Moves a tap's receiver up from where it landed to its first ancestor no smaller than
+  /// `minArea` (at most `end`, its link's end), the coefficient rescaled. Up the receiver's own
+  /// path: found again from `end` through the single-precision point, rounding at a shared edge
+  /// could pick a sibling's branch. Returns whether it moved.
+  bool liftTap(uint32_t& receiver, float& into, uint32_t end, double minArea) const {
+    uint32_t e = receiver;
+    while (e != end && tree_[e].area < minArea) e = tree_[e].parent;
+    if (e == receiver) return false;
+    into = static_cast<float>(into * tree_[receiver].area / tree_[e].area);
+    receiver = e;
+    return true;
   }
 
   /// After refreshTaps: the leaves whose taps alone give them more than a whole hemisphere
   /// could (their coefficients summing over kMaxTapGather) have had light concentrated on them
   /// by sampling; their taps go back to makeLink's rule, pieces of their sample's share of the
-  /// link's end. Those pieces are no finer than the leaf (a tap moves up off it or stays), so no
-  /// leaf gains a tap and one pass suffices. Counts the taps moved.
+  /// link's end, up their own path (liftTap): no leaf gains a tap, so one pass suffices. Counts
+  /// the taps moved.
   void liftConcentratedTaps(RefinementStats& round) {
     // Summed from all threads in any order: in fixed point, so that the sums, and the taps
     // lifted, are the same on any number of threads.
     constexpr double kOne = 4294967296.0;  // 2^32
+    // Each term clamped just over the limit: the test is "over it", and 2^31 terms at the clamp
+    // cannot wrap the sum.
     auto fixed = [](float c) {
-      return c > 0 ? static_cast<uint64_t>(std::min<double>(c, 1e6) * kOne) : uint64_t{0};
+      return c > 0 ? static_cast<uint64_t>(std::min<double>(c, 2 * kMaxTapGather) * kOne)
+                   : uint64_t{0};
     };
     std::vector<std::atomic<uint64_t>> gather(tree_.size());
     parallelForEach(links_.size(), [&](size_t i) {
@@ -1186,10 +1196,10 @@ class Solver {
       const Link& l = links_[i];
       for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
         Tap& tap = taps_[t];
-        const uint32_t a = tap.a, b = tap.b;
-        if (over(a)) landTap(tap.a, tap.intoA, tap.atA, l.a, tree_[l.a].area * tap.share);
-        if (over(b)) landTap(tap.b, tap.intoB, tap.atB, l.b, tree_[l.b].area * tap.share);
-        lifted[i] += (tap.a != a) + (tap.b != b);
+        if (over(tap.a) && liftTap(tap.a, tap.intoA, l.a, tree_[l.a].area * tap.share))
+          ++lifted[i];
+        if (over(tap.b) && liftTap(tap.b, tap.intoB, l.b, tree_[l.b].area * tap.share))
+          ++lifted[i];
       }
     });
     for (const uint32_t n : lifted) round.tapsLifted += n;
