@@ -1196,10 +1196,8 @@ class Solver {
       const Link& l = links_[i];
       for (uint32_t t = l.tapBegin; t < l.tapBegin + l.tapCount; ++t) {
         Tap& tap = taps_[t];
-        if (over(tap.a) && liftTap(tap.a, tap.intoA, l.a, tree_[l.a].area * tap.share))
-          ++lifted[i];
-        if (over(tap.b) && liftTap(tap.b, tap.intoB, l.b, tree_[l.b].area * tap.share))
-          ++lifted[i];
+        if (over(tap.a) && liftTap(tap.a, tap.intoA, l.a, tree_[l.a].area * tap.share)) ++lifted[i];
+        if (over(tap.b) && liftTap(tap.b, tap.intoB, l.b, tree_[l.b].area * tap.share)) ++lifted[i];
       }
     });
     for (const uint32_t n : lifted) round.tapsLifted += n;
