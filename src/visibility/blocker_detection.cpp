@@ -155,6 +155,15 @@ class BlockerDetection {
     normalLengths_.resize(n);
     slabs_.resize(n);
     for (size_t p = 0; p < n; ++p) slabs_[p] = occluderSlab(scene.patches[p].polygon);
+    // Their edges as inward half-planes, beside the vertices: crossesInside runs for every
+    // blocker between a pair's ends and most fail at the first crossing point, so preparing the
+    // edges on each call was most of its cost.
+    edges_.resize(vertexStart_[n]);
+    edgesUsable_.resize(n);
+    for (size_t p = 0; p < n; ++p)
+      edgesUsable_[p] = inwardEdges(
+          scene.patches[p].polygon,
+          std::span<InwardEdge>(edges_.data() + vertexStart_[p], edges_.data() + vertexStart_[p + 1]));
     for (size_t p = 0; p < n; ++p) {
       normals_[p] = scene.patches[p].polygon.plane.normal;
       normalLengths_[p] = length(normals_[p]);
@@ -292,6 +301,8 @@ class BlockerDetection {
           box.add(patchBoxes_[s]);
           group.emplace(w.group.data(),
                         grid_->gatherInto(box, tol_.length(), w.group.data(), &shaft));
+          // Sorted once here, each pair's candidates, picked from it in order, come out sorted.
+          sortIds(std::span<uint32_t>(w.group.data(), group->size()), w.bits);
         }
         BlockerLists& lists = chunk.lists;
         lists.addPair(s, t);  // its blockers are appended below, straight into the chunk
@@ -334,8 +345,16 @@ class BlockerDetection {
   /// hidesWhole(c, S, T, margin), with c's slab prepared and S's side of it kept per source.
   bool hides(BlockerWorker& w, uint32_t c, uint32_t s, uint32_t t, double margin) const {
     return between(w, c, s, t, margin) &&
-           crossesInside(scene_.patches[c].polygon, slabs_[c], scene_.patches[s].polygon,
-                         scene_.patches[t].polygon, margin);
+           crossesInside(c, scene_.patches[s].polygon, scene_.patches[t].polygon, margin);
+  }
+  /// crossesInside(c, slab, S, T, margin) with c's edges prepared.
+  bool crossesInside(uint32_t c, const ConvexPolygon& sp, const ConvexPolygon& tp,
+                     double margin) const {
+    return edgesUsable_[c] &&
+           gv::crossesInside(scene_.patches[c].polygon, slabs_[c],
+                             std::span<const InwardEdge>(edges_.data() + vertexStart_[c],
+                                                         edges_.data() + vertexStart_[c + 1]),
+                             sp, tp, margin);
   }
   /// Whether S and T lie on opposite sides of c's slab, every vertex beyond it by more than
   /// `margin` (S's side kept per source).
@@ -402,8 +421,13 @@ class BlockerDetection {
     box.add(patchBoxes_[t]);
     // The slack is PairHull's box tolerance: the grid does PairHull's box test, and the group's
     // candidates get the grid's tests.
+    // Seen from T: a bit of its row when the rows are kept; else by flags when there are many
+    // candidates to ask about (setting them costs a pass over seen(T)), else by searches in the
+    // sorted seen(T).
+    const uint64_t* rowT = seenBits_.empty() ? nullptr : seenBits_.data() + size_t(t) * seenWords_;
     size_t count = 0;
     if (group) {
+      // The group's candidates are sorted, so these are.
       for (uint32_t c : *group) {
         w.gathered[count] = c;
         const Aabb& cb = patchBoxes_[c];
@@ -411,14 +435,10 @@ class BlockerDetection {
       }
     } else {
       count = grid_->gatherInto(box, tol_.length(), w.gathered.data(), &hull);
+      sortIds(std::span<uint32_t>(w.gathered.data(), count), w.bits);  // blockers come out sorted
     }
     const std::span<uint32_t> candidates(w.gathered.data(), count);
     const auto& b = seen_[t].seen;
-    sortIds(candidates, w.bits);  // blockers come out sorted
-    // Seen from T: a bit of its row when the rows are kept; else by flags when there are many
-    // candidates to ask about (setting them costs a pass over seen(T)), else by searches in the
-    // sorted seen(T).
-    const uint64_t* rowT = seenBits_.empty() ? nullptr : seenBits_.data() + size_t(t) * seenWords_;
     const bool flagT = !rowT && candidates.size() * kFlagsPerSearch > b.size();
     if (flagT)
       for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
@@ -441,7 +461,7 @@ class BlockerDetection {
                                      vertices_.data() + vertexStart_[c + 1]);
       if (hull.meetsInBox(cv, normals_[c], normalLengths_[c])) {
         if (between(w, c, s, t, margin)) {
-          if (crossesInside(scene_.patches[c].polygon, slabs_[c], sp, tp, margin)) {
+          if (crossesInside(c, sp, tp, margin)) {
             hidden = c;
             break;
           }
@@ -469,6 +489,8 @@ class BlockerDetection {
   std::vector<Vec3> normals_;
   std::vector<double> normalLengths_;
   std::vector<OccluderSlab> slabs_;  ///< per patch, as a blocker that may hide a pair whole
+  std::vector<InwardEdge> edges_;    ///< per patch, from vertexStart_: inwardEdges
+  std::vector<uint8_t> edgesUsable_;  ///< per patch: no edge of zero length
   std::vector<uint64_t> seenStart_;
   size_t seenWords_ = 0;
   /// Row p (seenWords_ words): the patches of seen(p); empty above kMaxSeenBitsPatches.

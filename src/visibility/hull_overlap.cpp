@@ -46,7 +46,15 @@ void PairHull::consider(const Vec3& n, const Vec3& o) {
   const double len = length(n);
   if (!(len > 0)) return;
   const Vec3 u = n * (1 / len);
-  const Range h = rangeOf(hull_, u, o);
+  // Most candidate planes cut through the hull: stop as soon as points lie beyond the tolerance
+  // on both sides (neither orientation is kept), before the range is complete.
+  Range h;
+  for (const Vec3& p : hull_) {
+    const double d = dot(u, p - o);
+    h.lo = std::min(h.lo, d);
+    h.hi = std::max(h.hi, d);
+    if (h.lo < -eps_ && h.hi > eps_) return;
+  }
   const double c = dot(u, o);
   const double touch = !shaft_ && h.hi - h.lo < kFlatHull * eps_ ? eps_ : -eps_;
   if (h.hi <= eps_) addPlane(u, c, touch);     // hull behind: separates what lies in front

@@ -33,46 +33,30 @@ int sideOfSlab(const ConvexPolygon& blocker, const OccluderSlab& slab, const Con
   return sign;
 }
 
-bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& s,
+bool inwardEdges(const ConvexPolygon& blocker, std::span<InwardEdge> out) {
+  const std::vector<Vec3>& b = blocker.vertices;
+  const size_t m = b.size();
+  bool usable = true;
+  for (size_t i = 0; i < m; ++i) {
+    out[i].inward = cross(blocker.plane.normal, b[(i + 1) % m] - b[i]);
+    out[i].length = length(out[i].inward);
+    usable = usable && out[i].length > 0;
+  }
+  return usable;
+}
+
+bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab,
+                   std::span<const InwardEdge> edges, const ConvexPolygon& s,
                    const ConvexPolygon& r, double margin) {
   const Plane& plane = blocker.plane;
   const std::vector<Vec3>& b = blocker.vertices;
   const double dev = slab.dev;
-  // The blocker's edges as inward half-planes across its plane: n × e points inside for a
-  // counter-clockwise outline seen from the front (and is parallel to the plane, so the test
-  // reads positions projected onto it). Prepared once (up to kEdges of them; plain doubles, not
-  // cleared on every call), then each crossing point is tested against all of them: a blocker
-  // that fails, as most do, fails at the first crossing point outside it.
-  constexpr size_t kEdges = 16;
   const size_t m = b.size();
-  double edge[4 * kEdges];  // per edge: inward x, y, z and margin times its length
-  auto inwardOf = [&](size_t i, Vec3& inward, double& least) {
-    inward = cross(plane.normal, b[(i + 1) % m] - b[i]);
-    const double len = length(inward);
-    least = margin * len;
-    return len > 0;
-  };
-  if (m <= kEdges) {
-    for (size_t i = 0; i < m; ++i) {
-      Vec3 inward;
-      double least;
-      if (!inwardOf(i, inward, least)) return false;
-      edge[4 * i] = inward.x, edge[4 * i + 1] = inward.y, edge[4 * i + 2] = inward.z;
-      edge[4 * i + 3] = least;
-    }
-  }
+  // Each crossing point is tested against every edge: a blocker that fails, as most do, fails at
+  // the first crossing point outside it.
   auto inside = [&](const Vec3& x) {
-    for (size_t i = 0; i < m; ++i) {
-      Vec3 inward;
-      double least;
-      if (m <= kEdges) {
-        inward = {edge[4 * i], edge[4 * i + 1], edge[4 * i + 2]};
-        least = edge[4 * i + 3];
-      } else if (!inwardOf(i, inward, least)) {
-        return false;
-      }
-      if (!(dot(inward, x - b[i]) >= least)) return false;
-    }
+    for (size_t i = 0; i < m; ++i)
+      if (!(dot(edges[i].inward, x - b[i]) >= margin * edges[i].length)) return false;
     return true;
   };
   // Where the segments between the vertices cross the slab's two faces: conv(S ∪ R) meets each
@@ -84,6 +68,22 @@ bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const
         if (!inside(p + (q - p) * (dp / (dp - dq)))) return false;
       }
   return true;
+}
+
+bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& s,
+                   const ConvexPolygon& r, double margin) {
+  // The blocker's edges prepared on the stack for the usual few, on the heap past that.
+  constexpr size_t kEdges = 16;
+  const size_t m = blocker.vertices.size();
+  InwardEdge local[kEdges];
+  std::vector<InwardEdge> heap;
+  std::span<InwardEdge> edges(local, std::min(m, kEdges));
+  if (m > kEdges) {
+    heap.resize(m);
+    edges = heap;
+  }
+  if (!inwardEdges(blocker, edges)) return false;
+  return crossesInside(blocker, slab, edges, s, r, margin);
 }
 
 bool hidesWhole(const ConvexPolygon& blocker, const ConvexPolygon& s, const ConvexPolygon& r,

@@ -4,6 +4,8 @@
 // answers of searches that ran past their budget.
 #pragma once
 
+#include <span>
+
 #include "geometry/convex_polygon.h"
 
 namespace gv {
@@ -36,6 +38,21 @@ int sideOfSlab(const ConvexPolygon& blocker, const OccluderSlab& slab, const Con
 /// For S and R on opposite sides of the slab: every segment between them crosses both faces of
 /// the slab inside the outline shrunk by `margin`.
 bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab, const ConvexPolygon& s,
+                   const ConvexPolygon& r, double margin);
+
+/// An edge of a blocker as an inward half-plane across its plane: n × (b[i+1] − b[i]), which
+/// points inside for a counter-clockwise outline seen from the front, and its length.
+struct InwardEdge {
+  Vec3 inward;
+  double length = 0;
+};
+/// The blocker's edges, one per vertex, into `out` (resized); false when one is degenerate (zero
+/// length): such a blocker hides nothing.
+bool inwardEdges(const ConvexPolygon& blocker, std::span<InwardEdge> out);
+/// crossesInside with the blocker's inwardEdges prepared (callers that test one blocker against
+/// many pairs keep them): the same answer, without m cross products and square roots per call.
+bool crossesInside(const ConvexPolygon& blocker, const OccluderSlab& slab,
+                   std::span<const InwardEdge> edges, const ConvexPolygon& s,
                    const ConvexPolygon& r, double margin);
 
 }  // namespace gv
