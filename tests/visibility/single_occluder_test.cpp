@@ -125,6 +125,17 @@ TEST(SingleOccluder, WhatItCallsHiddenHasNoFreeSegmentBySampling) {
     const bool disc = trial % 4 == 0;
     const auto b = disc ? randomDisc(centre, 1.5) : randomQuad(centre, 1.5);
     if (!s || !r || !b) continue;
+    // The prepared form (each blocker's edges kept, as `vis`'s blocker stage keeps them) gives
+    // the same answer as the one-off test, on the 20-gons too.
+    {
+      const OccluderSlab slab = occluderSlab(*b);
+      std::vector<InwardEdge> edges(b->vertices.size());
+      const bool usable = inwardEdges(*b, edges);
+      const int side = sideOfSlab(*b, slab, *s, 1e-6);
+      const bool prepared = side != 0 && sideOfSlab(*b, slab, *r, 1e-6) == -side && usable &&
+                            crossesInside(*b, slab, edges, *s, *r, 1e-6);
+      ASSERT_EQ(prepared, hidesWhole(*b, *s, *r, 1e-6)) << "trial " << trial;
+    }
     if (!hidesWhole(*b, *s, *r, 1e-6)) {
       ++notHidden;
       continue;
