@@ -161,9 +161,9 @@ class BlockerDetection {
     edges_.resize(vertexStart_[n]);
     edgesUsable_.resize(n);
     for (size_t p = 0; p < n; ++p)
-      edgesUsable_[p] = inwardEdges(
-          scene.patches[p].polygon,
-          std::span<InwardEdge>(edges_.data() + vertexStart_[p], edges_.data() + vertexStart_[p + 1]));
+      edgesUsable_[p] = inwardEdges(scene.patches[p].polygon,
+                                    std::span<InwardEdge>(edges_.data() + vertexStart_[p],
+                                                          edges_.data() + vertexStart_[p + 1]));
     for (size_t p = 0; p < n; ++p) {
       normals_[p] = scene.patches[p].polygon.plane.normal;
       normalLengths_[p] = length(normals_[p]);
@@ -421,10 +421,6 @@ class BlockerDetection {
     box.add(patchBoxes_[t]);
     // The slack is PairHull's box tolerance: the grid does PairHull's box test, and the group's
     // candidates get the grid's tests.
-    // Seen from T: a bit of its row when the rows are kept; else by flags when there are many
-    // candidates to ask about (setting them costs a pass over seen(T)), else by searches in the
-    // sorted seen(T).
-    const uint64_t* rowT = seenBits_.empty() ? nullptr : seenBits_.data() + size_t(t) * seenWords_;
     size_t count = 0;
     if (group) {
       // The group's candidates are sorted, so these are.
@@ -439,6 +435,10 @@ class BlockerDetection {
     }
     const std::span<uint32_t> candidates(w.gathered.data(), count);
     const auto& b = seen_[t].seen;
+    // Seen from T: a bit of its row when the rows are kept; else by flags when there are many
+    // candidates to ask about (setting them costs a pass over seen(T)), else by searches in the
+    // sorted seen(T).
+    const uint64_t* rowT = seenBits_.empty() ? nullptr : seenBits_.data() + size_t(t) * seenWords_;
     const bool flagT = !rowT && candidates.size() * kFlagsPerSearch > b.size();
     if (flagT)
       for (uint32_t entry : b) w.seen[seenPatch(entry)] |= kFromT;
@@ -488,8 +488,8 @@ class BlockerDetection {
   std::vector<Vec3> vertices_;
   std::vector<Vec3> normals_;
   std::vector<double> normalLengths_;
-  std::vector<OccluderSlab> slabs_;  ///< per patch, as a blocker that may hide a pair whole
-  std::vector<InwardEdge> edges_;    ///< per patch, from vertexStart_: inwardEdges
+  std::vector<OccluderSlab> slabs_;   ///< per patch, as a blocker that may hide a pair whole
+  std::vector<InwardEdge> edges_;     ///< per patch, from vertexStart_: inwardEdges
   std::vector<uint8_t> edgesUsable_;  ///< per patch: no edge of zero length
   std::vector<uint64_t> seenStart_;
   size_t seenWords_ = 0;

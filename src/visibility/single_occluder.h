@@ -46,8 +46,8 @@ struct InwardEdge {
   Vec3 inward;
   double length = 0;
 };
-/// The blocker's edges, one per vertex, into `out` (resized); false when one is degenerate (zero
-/// length): such a blocker hides nothing.
+/// The blocker's edges into `out`, one per vertex (`out` holds as many); false when one is
+/// degenerate (zero length): such a blocker hides nothing.
 bool inwardEdges(const ConvexPolygon& blocker, std::span<InwardEdge> out);
 /// crossesInside with the blocker's inwardEdges prepared (callers that test one blocker against
 /// many pairs keep them): the same answer, without m cross products and square roots per call.
