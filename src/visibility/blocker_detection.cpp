@@ -426,9 +426,9 @@ class BlockerDetection {
       // The group's candidates are sorted, so these are.
       for (uint32_t c : *group) {
         w.gathered[count] = c;
-        const Aabb& cb = patchBoxes_[c];
-        count += box.meets(cb, tol_.length()) && !hull.separatesBox(cb);
+        count += box.meets(patchBoxes_[c], tol_.length());
       }
+      count = hull.keepUnseparated(w.gathered.data(), count, patchBoxes_);
     } else {
       count = grid_->gatherInto(box, tol_.length(), w.gathered.data(), &hull);
       sortIds(std::span<uint32_t>(w.gathered.data(), count), w.bits);  // blockers come out sorted

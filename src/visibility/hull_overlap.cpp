@@ -124,6 +124,27 @@ bool PairHull::separatesBox(const Aabb& box) const {
   return false;
 }
 
+size_t PairHull::keepUnseparated(uint32_t* ids, size_t n, std::span<const Aabb> boxes) const {
+  // separatesBox's arithmetic, term for term, so that the answers are the same.
+  for (size_t i = 0; i < c_.size() && n > 0; ++i) {
+    const double nx = nx_[i], ny = ny_[i], nz = nz_[i], c = c_[i];
+    const double beyond = shaft_ ? 3 * eps_ : touch_[i] + 0.5 * eps_;
+    const bool px = nx >= 0, py = ny >= 0, pz = nz >= 0;
+    size_t kept = 0;
+    for (size_t k = 0; k < n; ++k) {
+      const uint32_t id = ids[k];
+      const Aabb& box = boxes[id];
+      const double least = (px ? nx * box.lo.x : nx * box.hi.x) +
+                           (py ? ny * box.lo.y : ny * box.hi.y) +
+                           (pz ? nz * box.lo.z : nz * box.hi.z) - c;
+      ids[kept] = id;
+      kept += !(least >= beyond);
+    }
+    n = kept;
+  }
+  return n;
+}
+
 bool PairHull::meets(const ConvexPolygon& b, const Aabb& bBox) const {
   return box_.meets(bBox, eps_) && meetsInBox(b);
 }

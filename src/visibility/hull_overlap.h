@@ -2,6 +2,7 @@
 // patch meeting conv(S, R) can stop a segment from S to R.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -56,6 +57,11 @@ class PairHull {
   /// query over many candidates skip whole groups of them (PatchGrid::gatherInto). For the
   /// shaft form, beyond by at least three times the tolerance (see its constructor).
   bool separatesBox(const Aabb& box) const;
+  /// separatesBox over many boxes: keeps, in order, the ids among ids[0, n) whose box
+  /// (boxes[id]) no side plane separates, and returns how many. The same answers as calling
+  /// separatesBox on each, found plane by plane over all the boxes: each plane's corner choice is
+  /// made once, and the loop over boxes has no early exit to mispredict.
+  size_t keepUnseparated(uint32_t* ids, size_t n, std::span<const Aabb> boxes) const;
   /// The hull's bounding box (not grown by the tolerance).
   const Aabb& box() const { return box_; }
   /// Side planes kept (after removing repeats), for tests and statistics.

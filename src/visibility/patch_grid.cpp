@@ -141,19 +141,15 @@ size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out,
       first[k] = coordinate(l, k, lo[k] - l.cellSize * (1 + kCellRounding));
       last[k] = coordinate(l, k, hi[k]);
     }
-    // Entries [begin, end) scanned with each id written and the count advanced on a hit (hits
-    // are unpredictable): no branch but the hull's test, made only for boxes that pass. The
-    // comparisons are PairHull's box test.
+    // Entries [begin, end) scanned with each entry written and the count advanced on a hit
+    // (hits are unpredictable): no branch. The comparisons are PairHull's box test.
     auto scan = [&](uint32_t begin, uint32_t end) {
       for (uint32_t i = begin; i < end; ++i) {
         const Aabb& b = boxes_[i];
         const bool hit = (a.lo.x <= b.hi.x + e) & (b.lo.x <= a.hi.x + e) & (a.lo.y <= b.hi.y + e) &
                          (b.lo.y <= a.hi.y + e) & (a.lo.z <= b.hi.z + e) & (b.lo.z <= a.hi.z + e);
-        out[count] = ids_[i];
-        // With a hull, a box that one of its side planes separates holds no patch that can
-        // meet it (on a long diagonal pair most of the hull's box is outside the hull): the
-        // entry's own box is read here in order, instead of the patch's vertices later.
-        count += hit && !(hull && hull->separatesBox(b));
+        out[count] = i;
+        count += hit;
       }
     };
     for (int z = first[2]; z <= last[2]; ++z)
@@ -182,14 +178,18 @@ size_t PatchGrid::gatherInto(const Aabb& box, double slack, uint32_t* out,
                               a.lo.y <= cb.lo.y && cb.hi.y <= a.hi.y && a.lo.z <= cb.lo.z &&
                               cb.hi.z <= a.hi.z;
           if (within) {
-            std::copy(ids_.begin() + begin, ids_.begin() + end, out + count);
-            count += end - begin;
+            for (uint32_t i = begin; i < end; ++i) out[count++] = i;
           } else {
             scan(begin, end);
           }
         }
       }
   }
+  // With a hull, an entry whose box one of its side planes separates holds no patch that can
+  // meet it (on a long diagonal pair most of the hull's box is outside the hull): the entries'
+  // own boxes are tested here, plane by plane, instead of the patches' vertices later.
+  if (hull) count = hull->keepUnseparated(out, count, boxes_);
+  for (size_t k = 0; k < count; ++k) out[k] = ids_[out[k]];
   return count;
 }
 

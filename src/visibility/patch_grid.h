@@ -27,8 +27,8 @@ class PatchGrid {
   /// count. `out` must have room for patchCount() ids (a patch is written at most once, but
   /// every candidate's slot is written before its box test decides whether it stays).
   /// With `hull`, the patches of a grid cell whose bounds the hull separates (PairHull::
-  /// separatesBox), and those whose own box it separates, are left out: only patches that
-  /// cannot meet the hull are.
+  /// separatesBox), and those whose own box it separates (keepUnseparated), are left out: only
+  /// patches that cannot meet the hull are.
   size_t gatherInto(const Aabb& box, double slack, uint32_t* out,
                     const PairHull* hull = nullptr) const;
   /// Patches stored (those with non-empty boxes).

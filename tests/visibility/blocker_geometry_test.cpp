@@ -307,6 +307,43 @@ TEST(BlockerHull, AShaftSeparatesOnlyWhatEveryPairHullMisses) {
   EXPECT_GT(kept, 300);
 }
 
+TEST(BlockerHull, KeepUnseparatedAnswersAsSeparatesBoxDoes) {
+  // The plane-by-plane filter over many boxes (the blocker stage's group candidates) must keep
+  // exactly the boxes, in their order, that separatesBox keeps, for a pair hull and for a shaft;
+  // the boxes include ones grazing a plane, so that the margin's comparison is exercised.
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(0, 1);
+  size_t kept = 0, dropped = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const ConvexPolygon s = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
+    const ConvexPolygon r = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
+    const PairHull pair(s, r, kTol);
+    const PairHull shaft(s, r.bounds(), kTol);
+    std::vector<Aabb> boxes;
+    for (int k = 0; k < 60; ++k) {
+      Aabb b;
+      const Vec3 c = k % 4 == 0 ? r.vertices[k % r.vertices.size()] : randomPoint(rng, 1.5);
+      b.add(c);
+      b.add(c + Vec3{u(rng), u(rng), u(rng)} * (k % 5 == 0 ? 0.0 : 0.3));
+      boxes.push_back(b);
+    }
+    for (const PairHull* hull : {&pair, &shaft}) {
+      std::vector<uint32_t> ids, want;
+      for (uint32_t k = 0; k < boxes.size(); k += 1 + (k % 3 == 0)) {  // a subset, in order
+        ids.push_back(k);
+        if (!hull->separatesBox(boxes[k])) want.push_back(k);
+      }
+      const size_t n = ids.size();
+      ids.resize(hull->keepUnseparated(ids.data(), n, boxes));
+      EXPECT_EQ(ids, want) << "trial " << trial << (hull == &shaft ? " (shaft)" : " (pair)");
+      kept += want.size();
+      dropped += n - want.size();
+    }
+  }
+  EXPECT_GT(kept, 1000);  // both answers occur (in numbers)
+  EXPECT_GT(dropped, 1000);
+}
+
 TEST(BlockerGrid, AHullLeavesOutOnlyPatchesThatCannotMeetIt) {
   // gatherInto with a hull may drop the patches of cells the hull separates: it must keep every
   // patch whose polygon meets the hull (PairHull::meets) and drop some on these dense grids.
