@@ -62,6 +62,23 @@ Vec3 randomPoint(std::mt19937_64& rng, double half) {
   return {u(rng), u(rng), u(rng)};
 }
 
+// One end of a random pair (S or R) for the hull tests: a polygon of radius 0.6 about a point
+// of [-1, 1]^3, facing anywhere.
+ConvexPolygon pairEnd(std::mt19937_64& rng) {
+  return randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
+}
+
+// Runs f(rng, trial, s, r) on `trials` random pairs (pairEnd) drawn from one generator.
+template <class F>
+void forRandomPairs(uint64_t seed, int trials, F&& f) {
+  std::mt19937_64 rng(seed);
+  for (int trial = 0; trial < trials; ++trial) {
+    const ConvexPolygon s = pairEnd(rng);
+    const ConvexPolygon r = pairEnd(rng);
+    f(rng, trial, s, r);
+  }
+}
+
 Vec3 randomPointIn(std::mt19937_64& rng, const ConvexPolygon& p) {
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<double> w(p.vertices.size());
@@ -131,8 +148,8 @@ TEST(BlockerHull, ConservativeAndTightOnFacetSeparations) {
   std::mt19937_64 rng(20261201);
   int meets = 0, misses = 0, robustMeets = 0, facetSeparated = 0;
   for (int trial = 0; trial < 3000; ++trial) {
-    const ConvexPolygon s = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
-    const ConvexPolygon r = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
+    const ConvexPolygon s = pairEnd(rng);
+    const ConvexPolygon r = pairEnd(rng);
     const ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.5);
     std::vector<Vec3> hull = s.vertices;
     hull.insert(hull.end(), r.vertices.begin(), r.vertices.end());
@@ -239,27 +256,26 @@ TEST(BlockerGrid, GatherReturnsExactlyTheMeetingBoxesOnce) {
 TEST(BlockerHull, ASeparatedBoxHoldsNoMeetingPolygon) {
   // separatesBox(box) promises that no polygon inside the box meets the hull: checked on
   // random polygons placed inside random boxes, with the brute-force oracle for the meeting ones.
-  std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
   int separatedBoxes = 0, keptBoxes = 0;
-  for (int trial = 0; trial < 2000; ++trial) {
-    const ConvexPolygon s = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
-    const ConvexPolygon r = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
-    const PairHull hull(s, r, kTol);
-    std::vector<Vec3> points = s.vertices;
-    points.insert(points.end(), r.vertices.begin(), r.vertices.end());
-    const ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 1.5), randomNormal(rng), 0.3);
-    Aabb box = b.bounds();  // b's box, grown a little at random: b lies inside it
-    box.add(box.lo - Vec3{u(rng), u(rng), u(rng)} * 0.2);
-    box.add(box.hi + Vec3{u(rng), u(rng), u(rng)} * 0.2);
-    if (!hull.separatesBox(box)) {
-      ++keptBoxes;
-      continue;
-    }
-    ++separatedBoxes;
-    EXPECT_FALSE(hull.meets(b)) << "trial " << trial;
-    EXPECT_GT(separation(points, b).gap, 0) << "trial " << trial << ": b meets the hull";
-  }
+  forRandomPairs(
+      7, 2000,
+      [&](std::mt19937_64& rng, int trial, const ConvexPolygon& s, const ConvexPolygon& r) {
+        const PairHull hull(s, r, kTol);
+        std::vector<Vec3> points = s.vertices;
+        points.insert(points.end(), r.vertices.begin(), r.vertices.end());
+        const ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 1.5), randomNormal(rng), 0.3);
+        Aabb box = b.bounds();  // b's box, grown a little at random: b lies inside it
+        box.add(box.lo - Vec3{u(rng), u(rng), u(rng)} * 0.2);
+        box.add(box.hi + Vec3{u(rng), u(rng), u(rng)} * 0.2);
+        if (!hull.separatesBox(box)) {
+          ++keptBoxes;
+          return;
+        }
+        ++separatedBoxes;
+        EXPECT_FALSE(hull.meets(b)) << "trial " << trial;
+        EXPECT_GT(separation(points, b).gap, 0) << "trial " << trial << ": b meets the hull";
+      });
   EXPECT_GT(separatedBoxes, 200);  // both answers occur (in numbers)
   EXPECT_GT(keptBoxes, 100);
 }
@@ -310,36 +326,35 @@ TEST(BlockerHull, AShaftSeparatesOnlyWhatEveryPairHullMisses) {
 TEST(BlockerHull, KeepUnseparatedAnswersAsSeparatesBoxDoes) {
   // The plane-by-plane filter over many boxes (the blocker stage's group candidates) must keep
   // exactly the boxes, in their order, that separatesBox keeps, for a pair hull and for a shaft;
-  // the boxes include ones grazing a plane, so that the margin's comparison is exercised.
-  std::mt19937_64 rng(13);
+  // every fourth box has a corner at a vertex of R (on the hull), every fifth is a point.
   std::uniform_real_distribution<double> u(0, 1);
   size_t kept = 0, dropped = 0;
-  for (int trial = 0; trial < 300; ++trial) {
-    const ConvexPolygon s = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
-    const ConvexPolygon r = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.6);
-    const PairHull pair(s, r, kTol);
-    const PairHull shaft(s, r.bounds(), kTol);
-    std::vector<Aabb> boxes;
-    for (int k = 0; k < 60; ++k) {
-      Aabb b;
-      const Vec3 c = k % 4 == 0 ? r.vertices[k % r.vertices.size()] : randomPoint(rng, 1.5);
-      b.add(c);
-      b.add(c + Vec3{u(rng), u(rng), u(rng)} * (k % 5 == 0 ? 0.0 : 0.3));
-      boxes.push_back(b);
-    }
-    for (const PairHull* hull : {&pair, &shaft}) {
-      std::vector<uint32_t> ids, want;
-      for (uint32_t k = 0; k < boxes.size(); k += 1 + (k % 3 == 0)) {  // a subset, in order
-        ids.push_back(k);
-        if (!hull->separatesBox(boxes[k])) want.push_back(k);
-      }
-      const size_t n = ids.size();
-      ids.resize(hull->keepUnseparated(ids.data(), n, boxes));
-      EXPECT_EQ(ids, want) << "trial " << trial << (hull == &shaft ? " (shaft)" : " (pair)");
-      kept += want.size();
-      dropped += n - want.size();
-    }
-  }
+  forRandomPairs(
+      13, 300,
+      [&](std::mt19937_64& rng, int trial, const ConvexPolygon& s, const ConvexPolygon& r) {
+        const PairHull pair(s, r, kTol);
+        const PairHull shaft(s, r.bounds(), kTol);
+        std::vector<Aabb> boxes;
+        for (int k = 0; k < 60; ++k) {
+          Aabb b;
+          const Vec3 c = k % 4 == 0 ? r.vertices[k % r.vertices.size()] : randomPoint(rng, 1.5);
+          b.add(c);
+          b.add(c + Vec3{u(rng), u(rng), u(rng)} * (k % 5 == 0 ? 0.0 : 0.3));
+          boxes.push_back(b);
+        }
+        for (const PairHull* hull : {&pair, &shaft}) {
+          std::vector<uint32_t> ids, want;
+          for (uint32_t k = 0; k < boxes.size(); k += 1 + (k % 3 == 0)) {  // a subset, in order
+            ids.push_back(k);
+            if (!hull->separatesBox(boxes[k])) want.push_back(k);
+          }
+          const size_t n = ids.size();
+          ids.resize(hull->keepUnseparated(ids.data(), n, boxes));
+          EXPECT_EQ(ids, want) << "trial " << trial << (hull == &shaft ? " (shaft)" : " (pair)");
+          kept += want.size();
+          dropped += n - want.size();
+        }
+      });
   EXPECT_GT(kept, 1000);  // both answers occur (in numbers)
   EXPECT_GT(dropped, 1000);
 }
