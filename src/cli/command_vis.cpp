@@ -153,6 +153,9 @@ Action addVisCommand(CLI::App& app) {
     if (v.acrossPortalPieces > 0)
       fmt::print("pieces of patches searched across openings lying along them: {}\n",
                  v.acrossPortalPieces);
+    if (v.acrossThinSlabPieces > 0)
+      fmt::print("pieces of patches searched across sealed slabs thinner than the tolerance: {}\n",
+                 v.acrossThinSlabPieces);
     if (v.pairsHiddenByOne > 0)
       fmt::print("pairs dropped as hidden whole behind one of their blockers: {}\n",
                  v.pairsHiddenByOne);

@@ -84,6 +84,7 @@ struct PatchPlacement {
   Placements placements;
   size_t thinWallSlivers = 0;  ///< pieces placed by placeThinWallSlivers
   size_t acrossPortals = 0;    ///< pieces placed by placeAcrossCoplanarPortals
+  size_t acrossThinSlabs = 0;  ///< pieces placed by placeAcrossThinSlabs
   /// Per cell, a ball hierarchy over its pieces (items: indices into cellPatches[cell]); its
   /// root holds them all.
   std::vector<BallTree> cellTrees;
@@ -377,6 +378,85 @@ size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, co
   return placed;
 }
 
+/// Pieces of patches across sealed slabs thinner than the tolerance. Two planes a hair apart
+/// (less than the plane-merging tolerance, yet not merged) cut a slab of a cell in front of a
+/// patch; every side face of the slab is thinner than the tolerance, so none of them is a portal
+/// (bsp/portals.h), and the patch's front looks into a cell with no way out: its search sees
+/// nothing and it is listed with nothing, though its sightlines cross the slab within the
+/// tolerance (q3-oa_rpg3dm2: patch 3683, the side of a brush 5.6e-4 thick, with a slab 2e-4
+/// deep in front of it; `verify --unlisted-pairs` found a free segment from it). So a piece
+/// facing into a cell without portals whose depth along the piece's normal is within the slack
+/// (2 planeOffset) is also placed, as clipToCell keeps it, in every convex region (a cell, or a
+/// leaf of a merged cell) within the slack of it with part of that region in front of the
+/// patch, facing into it: the search from there sees what the patch's front sees beyond the
+/// slab. Extra pieces only let the searches see more. Returns the number of pieces placed.
+size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
+                            PatchPlacement& out) {
+  const double slack = 2 * tol.planeOffset();
+  struct Stranded {
+    uint32_t patch, cell;
+    Aabb box;  // the piece's box, grown by the slack
+  };
+  std::vector<Stranded> stranded;
+  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+    const Cell& cell = sub.cells[c];
+    if (!cell.portals.empty() || !cell.parts.empty()) continue;
+    for (const CellPatch& cp : out.cellPatches[c]) {
+      if (!cp.facesIn) continue;
+      const Vec3& n = scene.patches[cp.patch].polygon.plane.normal;
+      double lo = INFINITY, hi = -INFINITY;
+      for (const PolyhedronFace& f : cell.shape.faces)
+        for (const Vec3& v : f.polygon.vertices) {
+          lo = std::min(lo, dot(n, v));
+          hi = std::max(hi, dot(n, v));
+        }
+      if (!(hi - lo <= slack)) continue;
+      Aabb box = cp.piece.bounds();
+      box.lo = box.lo - Vec3{slack, slack, slack};
+      box.hi = box.hi + Vec3{slack, slack, slack};
+      stranded.push_back({cp.patch, c, box});
+    }
+  }
+  size_t placed = 0;
+  for (const Stranded& st : stranded) {
+    const ConvexPolygon& poly = scene.patches[st.patch].polygon;
+    auto region = [&](uint32_t c, const ConvexPolyhedron& shape, int32_t part) {
+      if (c == st.cell || !shape.bounds().meets(st.box, 0)) return;
+      // Part of the region in front of the patch: a line leaving its front can go on there.
+      const PlaneSide side = shape.classify(poly.plane, tol);
+      if (side != PlaneSide::Front && side != PlaneSide::Spanning) return;
+      std::optional<ConvexPolygon> piece = clipToCell(poly, shape, tol);
+      if (!piece) return;
+      const std::vector<std::pair<uint32_t, size_t>>& where = out.placements[st.patch];
+      if (std::any_of(where.begin(), where.end(), [&](const auto& pl) {
+            return pl.first == c && out.cellPatches[c][pl.second].part == part;
+          }))
+        return;  // already there
+      CellPatch cp;
+      cp.patch = st.patch;
+      cp.facesIn = true;
+      cp.interior = side == PlaneSide::Spanning;
+      cp.part = part;
+      cp.sliver = part >= 0;
+      cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
+      cp.piece = std::move(*piece);
+      out.placements[st.patch].emplace_back(c, out.cellPatches[c].size());
+      out.cellPatches[c].push_back(std::move(cp));
+      ++placed;
+    };
+    for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+      const Cell& cell = sub.cells[c];
+      if (cell.parts.empty()) {
+        region(c, cell.shape, -1);
+      } else {
+        for (size_t k = 0; k < cell.parts.size(); ++k)
+          region(c, cell.parts[k].shape, static_cast<int32_t>(k));
+      }
+    }
+  }
+  return placed;
+}
+
 PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
                             bool outsideSlivers) {
   PatchPlacement out;
@@ -424,6 +504,7 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
     }
   }
   out.acrossPortals = placeAcrossCoplanarPortals(scene, sub, tol, out);
+  out.acrossThinSlabs = placeAcrossThinSlabs(scene, sub, tol, out);
   out.thinWallSlivers = placeThinWallSlivers(scene, sub, tol, outsideSlivers, out);
   out.cellTrees.resize(sub.cells.size());
   std::vector<Ball> balls;
@@ -870,6 +951,7 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
   const PatchPlacement placed = placePatches(scene, sub, tol, options.outsideSlivers);
   st.thinWallSlivers = placed.thinWallSlivers;
   st.acrossPortalPieces = placed.acrossPortals;
+  st.acrossThinSlabPieces = placed.acrossThinSlabs;
   const PortalReach reach = cells.reach();
   const std::vector<CellSet>& cellReach = cells.cellReach;
   std::vector<PatchSearchResult> seen(n);

@@ -145,6 +145,7 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"pairs_hidden_by_coplanar_blockers", s.pairsHiddenByWall},
       {"thin_wall_slivers", s.thinWallSlivers},
       {"pieces_across_openings", s.acrossPortalPieces},
+      {"pieces_across_thin_slabs", s.acrossThinSlabPieces},
       {"coplanar_graze_pairs", s.coplanarGrazePairs},
       {"cell_pairs_visible", s.cellPairsVisible},
       {"cell_searches_over_budget", s.cellSearchesOverBudget},

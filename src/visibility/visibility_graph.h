@@ -82,6 +82,10 @@ struct VisibilityStats {
   /// it (patch_search.cpp: a patch the BSP moved onto a tilted plane, its front looking out
   /// through that opening).
   uint64_t acrossPortalPieces = 0;
+  /// Pieces of patches placed across a sealed slab thinner than the tolerance in front of them
+  /// (patch_search.cpp: the slab's faces are too thin to be portals, so the patch's front saw
+  /// nothing).
+  uint64_t acrossThinSlabPieces = 0;
   /// Pairs of nearly coplanar patches facing each other that the searches had not seen both
   /// ways, added for the blocker stage (visibility/coplanar_grazes.h).
   uint64_t coplanarGrazePairs = 0;
