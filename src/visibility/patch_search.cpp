@@ -417,21 +417,32 @@ size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const To
       stranded.push_back({cp.patch, c, box});
     }
   }
+  if (stranded.empty()) return 0;
+  std::vector<Aabb> boxes;
+  for (const Stranded& st : stranded) boxes.push_back(st.box);
+  const PatchGrid grid(boxes);
+  std::vector<uint32_t> near;
   size_t placed = 0;
-  for (const Stranded& st : stranded) {
-    const ConvexPolygon& poly = scene.patches[st.patch].polygon;
-    auto region = [&](uint32_t c, const ConvexPolyhedron& shape, int32_t part) {
-      if (c == st.cell || !shape.bounds().meets(st.box, 0)) return;
+  // Each convex region once (its bounds are computed from its faces), with the stranded pieces
+  // whose grown boxes meet it, in their order.
+  auto region = [&](uint32_t c, const ConvexPolyhedron& shape, int32_t part) {
+    near.clear();
+    grid.gather(shape.bounds(), 0, near);
+    std::sort(near.begin(), near.end());
+    for (uint32_t i : near) {
+      const Stranded& st = stranded[i];
+      if (c == st.cell) continue;
+      const ConvexPolygon& poly = scene.patches[st.patch].polygon;
       // Part of the region in front of the patch: a line leaving its front can go on there.
       const PlaneSide side = shape.classify(poly.plane, tol);
-      if (side != PlaneSide::Front && side != PlaneSide::Spanning) return;
+      if (side != PlaneSide::Front && side != PlaneSide::Spanning) continue;
       std::optional<ConvexPolygon> piece = clipToCell(poly, shape, tol);
-      if (!piece) return;
+      if (!piece) continue;
       const std::vector<std::pair<uint32_t, size_t>>& where = out.placements[st.patch];
       if (std::any_of(where.begin(), where.end(), [&](const auto& pl) {
             return pl.first == c && out.cellPatches[c][pl.second].part == part;
           }))
-        return;  // already there
+        continue;  // already there
       CellPatch cp;
       cp.patch = st.patch;
       cp.facesIn = true;
@@ -443,15 +454,15 @@ size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const To
       out.placements[st.patch].emplace_back(c, out.cellPatches[c].size());
       out.cellPatches[c].push_back(std::move(cp));
       ++placed;
-    };
-    for (uint32_t c = 0; c < sub.cells.size(); ++c) {
-      const Cell& cell = sub.cells[c];
-      if (cell.parts.empty()) {
-        region(c, cell.shape, -1);
-      } else {
-        for (size_t k = 0; k < cell.parts.size(); ++k)
-          region(c, cell.parts[k].shape, static_cast<int32_t>(k));
-      }
+    }
+  };
+  for (uint32_t c = 0; c < sub.cells.size(); ++c) {
+    const Cell& cell = sub.cells[c];
+    if (cell.parts.empty()) {
+      region(c, cell.shape, -1);
+    } else {
+      for (size_t k = 0; k < cell.parts.size(); ++k)
+        region(c, cell.parts[k].shape, static_cast<int32_t>(k));
     }
   }
   return placed;
