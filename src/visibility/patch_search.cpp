@@ -378,13 +378,14 @@ size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, co
   return placed;
 }
 
-/// Pieces of patches across sealed slabs thinner than the tolerance. Two planes a hair apart
-/// (less than the plane-merging tolerance, yet not merged) cut a slab of a cell in front of a
-/// patch; every side face of the slab is thinner than the tolerance, so none of them is a portal
-/// (bsp/portals.h), and the patch's front looks into a cell with no way out: its search sees
-/// nothing and it is listed with nothing, though its sightlines cross the slab within the
-/// tolerance (q3-oa_rpg3dm2: patch 3683, the side of a brush 5.6e-4 thick, with a slab 2e-4
-/// deep in front of it; `verify --unlisted-pairs` found a free segment from it). So a piece
+/// Pieces of patches across sealed slabs thinner than the tolerance. Planes that run, or meet, a
+/// hair in front of a patch (closer than the model tolerance, yet not merged with its plane) cut
+/// a slab or wedge of a cell there; every face of it is a sliver at that tolerance, so none is a
+/// portal (bsp/portals.cpp), and the patch's front looks into a cell with no way out: its search
+/// sees nothing and it is listed with nothing, though its sightlines leave the slab within the
+/// tolerance (q3-oa_rpg3dm2: patch 3683, a bevel 5.6e-4 tall between a beam's two sloped faces,
+/// whose planes meet 2.2e-4 in front of it; `verify --unlisted-pairs` found a free segment from
+/// it). So a piece
 /// facing into a cell without portals whose depth along the piece's normal is within the slack
 /// (2 planeOffset) is also placed, as clipToCell keeps it, in every convex region (a cell, or a
 /// leaf of a merged cell) within the slack of it with part of that region in front of the
