@@ -396,9 +396,9 @@ size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const To
   const double slack = 2 * tol.planeOffset();
   struct Stranded {
     uint32_t patch, cell;
-    Aabb box;  // the piece's box, grown by the slack
   };
   std::vector<Stranded> stranded;
+  std::vector<Aabb> boxes;  // per stranded piece, its box
   for (uint32_t c = 0; c < sub.cells.size(); ++c) {
     const Cell& cell = sub.cells[c];
     if (!cell.portals.empty() || !cell.parts.empty()) continue;
@@ -412,23 +412,19 @@ size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const To
           hi = std::max(hi, dot(n, v));
         }
       if (!(hi - lo <= slack)) continue;
-      Aabb box = cp.piece.bounds();
-      box.lo = box.lo - Vec3{slack, slack, slack};
-      box.hi = box.hi + Vec3{slack, slack, slack};
-      stranded.push_back({cp.patch, c, box});
+      stranded.push_back({cp.patch, c});
+      boxes.push_back(cp.piece.bounds());
     }
   }
   if (stranded.empty()) return 0;
-  std::vector<Aabb> boxes;
-  for (const Stranded& st : stranded) boxes.push_back(st.box);
   const PatchGrid grid(boxes);
   std::vector<uint32_t> near;
   size_t placed = 0;
   // Each convex region once (its bounds are computed from its faces), with the stranded pieces
-  // whose grown boxes meet it, in their order.
+  // whose boxes come within the slack of it, in their order.
   auto region = [&](uint32_t c, const ConvexPolyhedron& shape, int32_t part) {
     near.clear();
-    grid.gather(shape.bounds(), 0, near);
+    grid.gather(shape.bounds(), slack, near);
     std::sort(near.begin(), near.end());
     for (uint32_t i : near) {
       const Stranded& st = stranded[i];
