@@ -98,6 +98,13 @@ struct Oracle {
   double gap = -INFINITY;
   double faceGap = -INFINITY;
 };
+/// The vertices of s and of r: the points whose convex hull is conv(s ∪ r), for `separation`.
+std::vector<Vec3> pointsOf(const ConvexPolygon& s, const ConvexPolygon& r) {
+  std::vector<Vec3> points = s.vertices;
+  points.insert(points.end(), r.vertices.begin(), r.vertices.end());
+  return points;
+}
+
 Oracle separation(const std::vector<Vec3>& hull, const ConvexPolygon& b) {
   Oracle o;
   enum Kind { kAny, kOutwardFacet, kOwnPlane };
@@ -151,9 +158,7 @@ TEST(BlockerHull, ConservativeAndTightOnFacetSeparations) {
     const ConvexPolygon s = pairEnd(rng);
     const ConvexPolygon r = pairEnd(rng);
     const ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 1), randomNormal(rng), 0.5);
-    std::vector<Vec3> hull = s.vertices;
-    hull.insert(hull.end(), r.vertices.begin(), r.vertices.end());
-    const Oracle o = separation(hull, b);
+    const Oracle o = separation(pointsOf(s, r), b);
     const PairHull ph(s, r, kTol);
     const bool m = ph.meets(b);
     (m ? meets : misses)++;
@@ -262,8 +267,6 @@ TEST(BlockerHull, ASeparatedBoxHoldsNoMeetingPolygon) {
       7, 2000,
       [&](std::mt19937_64& rng, int trial, const ConvexPolygon& s, const ConvexPolygon& r) {
         const PairHull hull(s, r, kTol);
-        std::vector<Vec3> points = s.vertices;
-        points.insert(points.end(), r.vertices.begin(), r.vertices.end());
         const ConvexPolygon b = randomPolygon(rng, randomPoint(rng, 1.5), randomNormal(rng), 0.3);
         Aabb box = b.bounds();  // b's box, grown a little at random: b lies inside it
         box.add(box.lo - Vec3{u(rng), u(rng), u(rng)} * 0.2);
@@ -274,7 +277,8 @@ TEST(BlockerHull, ASeparatedBoxHoldsNoMeetingPolygon) {
         }
         ++separatedBoxes;
         EXPECT_FALSE(hull.meets(b)) << "trial " << trial;
-        EXPECT_GT(separation(points, b).gap, 0) << "trial " << trial << ": b meets the hull";
+        EXPECT_GT(separation(pointsOf(s, r), b).gap, 0)
+            << "trial " << trial << ": b meets the hull";
       });
   EXPECT_GT(separatedBoxes, 200);  // both answers occur (in numbers)
   EXPECT_GT(keptBoxes, 100);
@@ -312,11 +316,9 @@ TEST(BlockerHull, AShaftSeparatesOnlyWhatEveryPairHullMisses) {
       continue;
     }
     ++separated;
-    for (const ConvexPolygon& r : receivers) {
-      std::vector<Vec3> points = s.vertices;
-      points.insert(points.end(), r.vertices.begin(), r.vertices.end());
-      EXPECT_GT(separation(points, b).gap, 0) << "trial " << trial << ": b meets conv(S, R)";
-    }
+    for (const ConvexPolygon& r : receivers)
+      EXPECT_GT(separation(pointsOf(s, r), b).gap, 0)
+          << "trial " << trial << ": b meets conv(S, R)";
   }
   EXPECT_GT(across, 400);
   EXPECT_GT(separated, 300);  // both answers occur (in numbers)
