@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 #include <optional>
 #include <utility>
@@ -45,6 +46,37 @@ struct Piece {
   uint32_t patch = 0;
   ConvexPolygon polygon;
 };
+
+/// Which winding number is air, and so which regions no air reaches. In a soup of closed
+/// outward-facing solids (brushes, boxes) air is 0 and a solid's inside +1; inside inward-facing
+/// shells (a 2.5D sector level: floors, ceilings and walls facing into the sectors) air is -1
+/// and 0 is the void outside every sector. A scene is taken for shells when more of the pieces'
+/// area looks into cells near -1 than into cells near 0.
+bool shellLevel(const std::vector<std::vector<Piece>>& pieces, const std::vector<double>& wind) {
+  double shellArea = 0, openArea = 0;
+  for (size_t c = 0; c < pieces.size(); ++c)
+    for (const Piece& piece : pieces[c]) {
+      if (wind[c] <= -0.5) {
+        shellArea += piece.polygon.area();
+      } else if (wind[c] < 0.5) {
+        openArea += piece.polygon.area();
+      }
+    }
+  return shellArea > openArea;
+}
+
+/// Per cell some piece looks into, whether no air reaches it: a closed solid's inside (the
+/// hidden cells), and on a level of shells also the void (winding number above -1/2). Fractions
+/// near open edges fall on the side of "beyond air" there: the flag only widens what `vis`
+/// searches for.
+std::vector<uint8_t> cellsBeyondAir(const std::vector<std::vector<Piece>>& pieces,
+                                    const std::vector<double>& wind) {
+  const bool shells = shellLevel(pieces, wind);
+  std::vector<uint8_t> out(pieces.size(), 0);
+  for (size_t c = 0; c < pieces.size(); ++c)
+    if (!pieces[c].empty()) out[c] = wind[c] >= (shells ? -0.5 : kSolidWindingNumber);
+  return out;
+}
 
 }  // namespace
 
@@ -81,17 +113,22 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
 
   // Solid cells: only those some piece looks into matter.
   std::vector<uint8_t> solid(nCells, 0);
+  std::vector<double> wind(nCells, 0);
   const WindingNumberField winding(scene);
   tbb::parallel_for(size_t{0}, nCells, [&](size_t c) {
     if (pieces[c].empty()) return;
-    solid[c] = winding.at(sub.cells[c].shape.centroid()) >= kSolidWindingNumber;
+    wind[c] = winding.at(sub.cells[c].shape.centroid());
+    solid[c] = wind[c] >= kSolidWindingNumber;
   });
+  const std::vector<uint8_t> beyondAir = cellsBeyondAir(pieces, wind);
 
   // Per patch: its pieces in air, after the earlier same-facing patches on its plane in the same
   // cell took their overlap. `cut` marks a patch that lost anything.
   std::vector<std::vector<ConvexPolygon>> kept(scene.patches.size());
   std::vector<uint8_t> cutByHiding(scene.patches.size(), 0), cutByTwin(scene.patches.size(), 0);
   std::vector<uint8_t> hasPiece(scene.patches.size(), 0);
+  std::vector<Aabb> beyond(scene.patches.size());  // the box of its pieces beyond air
+  std::vector<std::vector<Aabb>> keptBeyond(scene.patches.size());  // per piece of kept[p]
   for (size_t c = 0; c < nCells; ++c) {
     std::vector<Piece>& here = pieces[c];
     std::sort(here.begin(), here.end(),
@@ -99,6 +136,7 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
     std::vector<const Piece*> earlier;  // the air pieces of this cell so far
     for (const Piece& piece : here) {
       hasPiece[piece.patch] = 1;
+      if (beyondAir[c]) beyond[piece.patch].add(piece.polygon.bounds());
       if (solid[c]) {
         cutByHiding[piece.patch] = 1;
         continue;
@@ -122,7 +160,10 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
         std::swap(rest, next);
         if (rest.empty()) break;
       }
-      for (ConvexPolygon& r : rest) kept[piece.patch].push_back(std::move(r));
+      for (ConvexPolygon& r : rest) {
+        keptBeyond[piece.patch].push_back(beyondAir[c] ? r.bounds() : Aabb{});
+        kept[piece.patch].push_back(std::move(r));
+      }
       earlier.push_back(&piece);
     }
   }
@@ -130,31 +171,45 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
   Scene out;
   out.materials = scene.materials;
   out.report = scene.report;
+  // A patch kept whole keeps the box of all its pieces beyond air (undecided ones: none known);
+  // a cut patch's pieces each their own.
+  auto keep = [&](const Patch& patch, const Aabb& beyondAirBox) {
+    out.patches.push_back(patch);
+    out.beyondAirBounds.push_back(beyondAirBox);
+  };
   for (uint32_t p = 0; p < scene.patches.size(); ++p) {
     const Patch& patch = scene.patches[p];
     const bool cut = cutByHiding[p] || cutByTwin[p];
     if (undecided[p] || !hasPiece[p] || !cut) {
-      out.patches.push_back(patch);
+      keep(patch, undecided[p] ? Aabb{} : beyond[p]);
       continue;
     }
     // Pieces the importer would drop: patches.obj must read back as these patches.
-    std::erase_if(kept[p], [&](const ConvexPolygon& piece) { return isSliver(piece, tol); });
+    for (size_t k = kept[p].size(); k-- > 0;) {
+      if (!isSliver(kept[p][k], tol)) continue;
+      kept[p].erase(kept[p].begin() + static_cast<std::ptrdiff_t>(k));
+      keptBeyond[p].erase(keptBeyond[p].begin() + static_cast<std::ptrdiff_t>(k));
+    }
     if (kept[p].empty()) {
       ++(cutByTwin[p] && !cutByHiding[p] ? rep.coincident : rep.hidden);
     } else if (!options.cutPartly) {
       // Kept whole: its hidden part is unreachable by light and rays alike, so it only lowers
       // the patch's mean the same way for the solver and a tracer on patches.obj, and cutting
       // along the all-planes BSP would shatter it into many pieces.
-      out.patches.push_back(patch);
+      keep(patch, beyond[p]);
       ++rep.partlyKept;
     } else {
       ++(cutByHiding[p] ? rep.partlyHidden : rep.partlyCoincident);
-      for (ConvexPolygon& piece : kept[p]) {
-        out.patches.push_back({std::move(piece), patch.material, patch.sourceFace});
+      for (size_t k = 0; k < kept[p].size(); ++k) {
+        keep({std::move(kept[p][k]), patch.material, patch.sourceFace}, keptBeyond[p][k]);
         ++rep.piecesOut;
       }
     }
   }
+  rep.frontBeyondAir =
+      static_cast<size_t>(std::count_if(out.beyondAirBounds.begin(), out.beyondAirBounds.end(),
+                                        [](const Aabb& b) { return !b.empty(); }));
+  rep.shells = shellLevel(pieces, wind);
   if (report) *report = rep;
   return out;
 }

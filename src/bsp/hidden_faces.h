@@ -34,6 +34,8 @@ struct HiddenFaceReport {
   size_t partlyCoincident = 0;  ///< patches cut where an earlier same-facing patch covers them
   size_t piecesOut = 0;         ///< pieces the cut patches became
   size_t partlyKept = 0;        ///< partly hidden or covered patches kept whole (!cutPartly)
+  size_t frontBeyondAir = 0;    ///< patches out with a Scene::beyondAirBounds box
+  bool shells = false;          ///< air is inside inward-facing shells (a 2.5D sector level)
   bool changed() const { return hidden + partlyHidden + coincident + partlyCoincident > 0; }
 };
 
@@ -44,7 +46,8 @@ struct HiddenFaceReport {
 ///   overlapping coplanar faces), the earlier patch keeps the overlap and the later loses it.
 /// A patch left with nothing is dropped; one left with a part is kept whole, or replaced by its
 /// remaining convex pieces (same material and source face) with `cutPartly`. Patches keep their
-/// order, so a clean scene comes back unchanged.
+/// order, so a clean scene comes back unchanged but for Scene::beyondAirBounds, which is set for
+/// every patch out: the box of the parts of its front that look into cells no air reaches.
 /// `report` (if given) counts what happened.
 Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options = {},
                         HiddenFaceReport* report = nullptr);

@@ -23,6 +23,8 @@ nlohmann::json infoJson(const std::string& path, const Scene& s) {
           {"hidden_dropped", r.hiddenDropped},
           {"coincident_dropped", r.coincidentDropped},
           {"partly_hidden_kept", r.partlyHiddenKept},
+          {"front_beyond_air", r.frontBeyondAir},
+          {"air_inside_shells", r.shells},
           {"materials", s.materials.size()},
           {"emitters", s.emitterCount()},
           {"bounds_min", {box.lo.x, box.lo.y, box.lo.z}},
@@ -47,6 +49,10 @@ void printInfo(const std::string& path, const Scene& s) {
       "hidden       {} patches inside closed solids or covered by same-facing twins "
       "dropped ({} twins), {} partly hidden kept whole\n",
       r.hiddenDropped + r.coincidentDropped, r.coincidentDropped, r.partlyHiddenKept);
+  fmt::print("beyond air   {} patches whose front looks partly out of the air ({})\n",
+             r.frontBeyondAir,
+             r.shells ? "air inside inward-facing shells: the outside counts"
+                      : "air outside closed solids: their insides count");
   fmt::print("materials    {}\n", s.materials.size());
   fmt::print("emitters     {} patches\n", s.emitterCount());
   fmt::print("bounds       ({:g}, {:g}, {:g}) to ({:g}, {:g}, {:g}), size {:g} x {:g} x {:g}\n",

@@ -148,8 +148,13 @@ Action addVisCommand(CLI::App& app) {
           v.cellSearchesOverBudget, 2 * v.portals, v.patchSearchesOverBudget, v.patches,
           v.patchBudget);
     if (v.thinWallSlivers > 0)
-      fmt::print("pieces of patches searched across one-sided walls they end against: {}\n",
-                 v.thinWallSlivers);
+      fmt::print("pieces of patches searched across one-sided walls they end against: {}{}\n",
+                 v.thinWallSlivers,
+                 v.beyondAirSlivers > 0
+                     ? fmt::format(" ({} into the outside, looking for {} parts of faces "
+                                   "looking out of the air)",
+                                   v.beyondAirSlivers, v.beyondAirFragments)
+                     : "");
     if (v.acrossPortalPieces > 0)
       fmt::print("pieces of patches searched across openings lying along them: {}\n",
                  v.acrossPortalPieces);

@@ -16,6 +16,8 @@ void dropHidden(Scene& scene, bool cutPartly) {
   r.hiddenDropped = h.hidden;
   r.coincidentDropped = h.coincident;
   r.partlyHiddenKept = h.partlyKept;
+  r.frontBeyondAir = h.frontBeyondAir;
+  r.shells = h.shells;
   scene = std::move(cleaned);
 }
 

@@ -50,6 +50,8 @@ struct ImportReport {
   size_t hiddenDropped = 0;      ///< patches whose front looks only into closed solids
   size_t coincidentDropped = 0;  ///< same-facing twins wholly covered by earlier patches
   size_t partlyHiddenKept = 0;   ///< patches only partly hidden or covered, kept whole
+  size_t frontBeyondAir = 0;     ///< patches with a Scene::beyondAirBounds box
+  bool shells = false;           ///< air is inside inward-facing shells (a 2.5D sector level)
   std::vector<std::string> warnings;
 };
 
@@ -58,6 +60,13 @@ struct Scene {
   std::vector<Patch> patches;
   std::vector<Material> materials;
   ImportReport report;
+  /// Per patch, the box of the parts of its front that look into a region no air reaches (empty
+  /// box: none): a closed solid's inside, or on a level of inward-facing shells (2.5D sectors)
+  /// the void outside every sector (a lower wall taller than the room it faces). Set by the
+  /// hidden-face pass (bsp/hidden_faces.h); an empty vector when not known. `vis` looks for
+  /// those parts from the rays that slip into such regions at a wall's end
+  /// (visibility/patch_search.cpp).
+  std::vector<Aabb> beyondAirBounds;
 
   Aabb bounds() const;
   /// The scene's tolerance policy instance (see geometry/tolerance.h).

@@ -88,6 +88,17 @@ struct PatchPlacement {
   /// Per cell, a ball hierarchy over its pieces (items: indices into cellPatches[cell]); its
   /// root holds them all.
   std::vector<BallTree> cellTrees;
+  /// The pieces that only rays slipping into the outside at a wall's end look for, kept apart
+  /// from cellPatches (so every other search walks the cells and ball trees it walked without
+  /// them): `slivers`, placed by placeThinWallSlivers in the leaves of merged cells, and
+  /// `fragments`, the parts of the front pieces of patches whose front looks beyond the air
+  /// within the box of those parts (Scene::beyondAirBounds). A search from a sliver looks only
+  /// for fragments, from a fragment only for slivers (PatchSearch::run).
+  struct CellPiece {
+    uint32_t cell = 0;
+    CellPatch piece;
+  };
+  std::vector<CellPiece> slivers, fragments;
 };
 
 /// The part of `a` within `slab` of the plane of `w` and on the inner side of each of w's edges
@@ -157,14 +168,25 @@ std::optional<ConvexPolygon> clipToBox(const ConvexPolygon& a, const Aabb& b,
 /// facing into it only (q3-oacmpdm1: a wall under the edge of a floor, facing into the solid
 /// under it, and above the floor a slot of air holding an arch's corner, so a patch inside; 1 of
 /// 10^6 `verify` rays crossed the floor from behind at 1e-6; +1.3 % pairs there).
+/// By default a leaf of a merged cell gets its slivers apart (PatchPlacement::slivers). On the
+/// sector levels
+/// every room ends at one-sided walls with the outside behind them, and a search from such a
+/// sliver for everything lists 2.4-4.5 times the pairs (`outside`, docs/BENCHMARKS.md): from
+/// the outside the search enters every room through cells that the stop rule left holding both
+/// air and outside. But a ray that slipped through W into the void or a solid's inside first
+/// meets either a back (blocked) or a front that looks out of the air there (doom-fd2-map19:
+/// the part of a wall 2008 below the floor of the room it faces, a lower wall taller than that
+/// room; the ray left a pillar's wall 1e-4 from its corner and crossed the next wall 1.66e-4
+/// along), so only the parts of fronts the hidden-face pass found so (Scene::beyondAirBounds;
+/// none known: no such sliver) are looked for from it, and only they look for it.
 /// Not covered (measured, docs/BENCHMARKS.md): walls facing away from cells with patches inside
-/// them, where the air behind W is not known without a finer test, and by default the leaves of
-/// merged cells: on the sector levels every room ends at one-sided walls with the outside behind
-/// them, and slivers there list 2.4-4.5 times the pairs, searched leaf by leaf, for the one pair
-/// per level that 10^6 rays find at the contact distance 1e-5 (none at 1e-6).
-/// Returns the number of pieces placed.
+/// them, where the air behind W is not known without a finer test.
+/// Returns the number of pieces placed (PatchPlacement::slivers among them).
 size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
                             bool outside, PatchPlacement& out) {
+  const bool beyondAirTargets =
+      std::any_of(scene.beyondAirBounds.begin(), scene.beyondAirBounds.end(),
+                  [](const Aabb& b) { return !b.empty(); });
   std::vector<Aabb> boxes;
   boxes.reserve(scene.patches.size());
   for (const Patch& p : scene.patches) boxes.push_back(p.polygon.bounds());
@@ -214,9 +236,10 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
     // A leaf of a merged cell has no patch facing into it as the BSP placed it (a piece may face
     // in by the leaf's centroid), and whether air lies behind W is not known there: with
     // `outside` every leaf is taken for air, and the leaf walk finds what a ray crossing W could
-    // reach (in a solid's inside, only backs); without it, none is (the air test above, applied
-    // to leaves, added 2.2 % pairs on e3m4 and fixed no miss).
-    if (part >= 0 ? !outside : !air) return;
+    // reach (in a solid's inside, only backs); without it the slivers look only for fronts
+    // facing beyond the air (the air test above, applied to leaves, added 2.2 % pairs on e3m4
+    // and fixed no miss).
+    if (part >= 0 ? !(outside || beyondAirTargets) : !air) return;
     near.clear();
     grid.gather(shape.bounds(), 2 * slack, near);
     std::sort(near.begin(), near.end());
@@ -276,9 +299,13 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
       cp.sliver = true;
       cp.boundaryPlane = boundaryPlaneOf(*piece, shape, tol);
       cp.piece = std::move(*piece);
+      ++placed;
+      if (part >= 0 && !outside) {
+        out.slivers.push_back({c, std::move(cp)});
+        continue;
+      }
       out.placements[p].emplace_back(c, out.cellPatches[c].size());
       out.cellPatches[c].push_back(std::move(cp));
-      ++placed;
     }
   };
   for (uint32_t c = 0; c < sub.cells.size(); ++c) {
@@ -465,6 +492,28 @@ size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const To
   return placed;
 }
 
+/// The fragments (PatchPlacement::fragments): each front piece of a patch whose front looks
+/// beyond the air, cut to the box of those parts (grown by the BSP's slack).
+void placeBeyondAirFragments(const Scene& scene, const Tolerance& tol, PatchPlacement& out) {
+  const double slack = 2 * tol.planeOffset();
+  for (uint32_t t = 0; t < scene.beyondAirBounds.size() && t < out.placements.size(); ++t) {
+    const Aabb& box = scene.beyondAirBounds[t];
+    if (box.empty()) continue;
+    const Aabb grown{box.lo - Vec3{slack, slack, slack}, box.hi + Vec3{slack, slack, slack}};
+    for (auto [cell, k] : out.placements[t]) {
+      const CellPatch& cp = out.cellPatches[cell][k];
+      if (!cp.facesIn && !cp.interior) continue;
+      std::optional<ConvexPolygon> piece = clipToBox(cp.piece, grown, tol);
+      if (!piece) continue;
+      CellPatch f = cp;
+      f.piece = std::move(*piece);
+      f.whole = false;
+      f.ball = ballAround(f.piece.vertices, tol);
+      out.fragments.push_back({cell, std::move(f)});
+    }
+  }
+}
+
 PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
                             bool outsideSlivers) {
   PatchPlacement out;
@@ -522,6 +571,9 @@ PatchPlacement placePatches(const Scene& scene, const Subdivision& sub, const To
       balls.push_back(cp.ball = ballAround(cp.piece.vertices, tol));
     out.cellTrees[c] = BallTree(balls, tol);
   }
+  for (PatchPlacement::CellPiece& b : out.slivers)
+    b.piece.ball = ballAround(b.piece.piece.vertices, tol);
+  if (!out.slivers.empty()) placeBeyondAirFragments(scene, tol, out);
   return out;
 }
 
@@ -532,7 +584,7 @@ class PatchSearch {
  public:
   DeadlineCheck checkDeadline;
   PatchSearch(const Subdivision& sub, const PatchPlacement& placed, const PortalReach& might,
-              const std::vector<CellSet>& cellReach, const Tolerance& tol)
+              const std::vector<CellSet>& cellReach, const Scene& scene, const Tolerance& tol)
       : sub_(sub),
         cellPatches_(placed.cellPatches),
         placements_(placed.placements),
@@ -546,6 +598,10 @@ class PatchSearch {
         unsaturatedCount_(sub.cells.size(), 0),
         unsaturated_(sub.cells.size()),
         fullyMarked_(sub.cells.size()),
+        scene_(scene),
+        slivers_(placed.slivers, sub.cells.size(), placed.placements.size()),
+        fragments_(placed.fragments, sub.cells.size(), placed.placements.size()),
+        outsideTargets_(sub.cells.size()),
         tol_(tol) {
     size_t maxParts = 0;
     for (uint32_t c = 0; c < sub.cells.size(); ++c) {
@@ -595,36 +651,18 @@ class PatchSearch {
     overBudget_ = false;
     // The source's own pieces are never targets: they count as saturated.
     for (uint32_t i = needsBegin_[s]; i < needsBegin_[s + 1]; ++i) saturate(needs_[i]);
-    for (auto [cell, k] : placements_[s]) {
-      const CellPatch& cp = cellPatches_[cell][k];
-      if (!cp.facesIn && !cp.interior) continue;  // S's front does not look into this cell
-      stabber_.clear();
-      if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) continue;  // degenerate
-      sourcePiece_ = &cp.piece;
-      // The shortcut needs a convex cell with nothing inside (a cell of parts is not convex),
-      // and S and T not on one boundary plane: the lines between those run within the plane's
-      // slack, where pieces merged onto the plane, tilted within it, can stand in the way (such
-      // pairs go to the blocker test). Pieces searched from both sides (`interior`: a patch whose
-      // facing the BSP and the centroid disagree on) stay out of it too.
-      const bool cellEmpty =
-          sub_.cells[cell].interiorPatches.empty() && sub_.cells[cell].parts.empty();
-      if (cp.whole && !cp.interior && cellEmpty) {
-        for (const CellPatch& t : cellPatches_[cell])
-          if (t.patch != s && t.whole && t.facesIn && !t.interior &&
-              (t.boundaryPlane < 0 || t.boundaryPlane != cp.boundaryPlane))
-            result.sameCellVisible.push_back(t.patch);
-      }
-      // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
-      const CellSet* reach = cellReach_.empty() ? nullptr : &cellReach_[cell];
-      // Other pieces in merged cells (a patch's piece facing into a leaf by its centroid, one
-      // placed across an opening) are searched from the whole cell: walked leaf by leaf they
-      // ran over the search budget more often, and the budget's answer, every cell any opening
-      // of the merged cell leads to, listed more (e3m4 +2.2 % pairs, base1-test +0.1 %).
-      if (cp.sliver && cp.part >= 0) {
-        visitPart(cell, static_cast<uint32_t>(cp.part), 0, reach);
-      } else {
-        visit(cell, 0, reach);
-      }
+    for (auto [cell, k] : placements_[s]) searchFrom(cell, cellPatches_[cell][k], result);
+    // Then, on what is left of the run's budget, S's slivers into the outside, each looking
+    // only for the fragments of fronts looking beyond the air (a ray that slipped through a
+    // wall into the outside meets only backs or such fronts first), and S's fragments, each
+    // looking only for slivers; either only for patches S can face and has not seen front.
+    for (const bool fromSlivers : {true, false}) {
+      const OutsidePieces& mine = fromSlivers ? slivers_ : fragments_;
+      if (mine.of[s].empty()) continue;
+      outside_ = fromSlivers ? &fragments_ : &slivers_;
+      if (gatherOutsideTargets(s))
+        for (uint32_t i : mine.of[s]) searchFrom(mine.pieces[i].cell, mine.pieces[i].piece, result);
+      outside_ = nullptr;
     }
     result.overBudget = overBudget_;
     for (uint32_t c : markedCells_) fullyMarked_.erase(c);
@@ -660,6 +698,47 @@ class PatchSearch {
     return result;
   }
 
+  /// The search from `cp`, a piece of the run's source S in `cell`, whose front looks into it.
+  void searchFrom(uint32_t cell, const CellPatch& cp, PatchSearchResult& result) {
+    if (!cp.facesIn && !cp.interior) return;  // S's front does not look into this cell
+    stabber_.clear();
+    if (stabber_.push(cp.piece.vertices) == StabbingResult::Blocked) return;  // degenerate
+    sourcePiece_ = &cp.piece;
+    // The shortcut needs a convex cell with nothing inside (a cell of parts is not convex),
+    // and S and T not on one boundary plane: the lines between those run within the plane's
+    // slack, where pieces merged onto the plane, tilted within it, can stand in the way (such
+    // pairs go to the blocker test). Pieces searched from both sides (`interior`: a patch whose
+    // facing the BSP and the centroid disagree on) stay out of it too.
+    const bool cellEmpty =
+        sub_.cells[cell].interiorPatches.empty() && sub_.cells[cell].parts.empty();
+    if (cp.whole && !cp.interior && cellEmpty) {
+      for (const CellPatch& t : cellPatches_[cell])
+        if (t.patch != source_ && t.whole && t.facesIn && !t.interior &&
+            (t.boundaryPlane < 0 || t.boundaryPlane != cp.boundaryPlane))
+          result.sameCellVisible.push_back(t.patch);
+    }
+    // A sightline from S is one from S's cell: it reaches only cells the cell search reached.
+    const CellSet* reach = cellReach_.empty() ? nullptr : &cellReach_[cell];
+    if (outside_ && exhausted()) {
+      // A sliver or fragment after S's other pieces spent the run's budget (the usual case):
+      // every piece it looks for in the cells its cell reaches. Walking the outside's openings
+      // instead took doom-fd2-map03's patch stage from 3.6 to 6.0 s.
+      outsideTargets_.forEach([&](size_t c) {
+        if (!reach || reach->contains(c)) markWhatTheSequenceMayMeet(static_cast<uint32_t>(c));
+      });
+      return;
+    }
+    // Other pieces in merged cells (a patch's piece facing into a leaf by its centroid, one
+    // placed across an opening) are searched from the whole cell: walked leaf by leaf they
+    // ran over the search budget more often, and the budget's answer, every cell any opening
+    // of the merged cell leads to, listed more (e3m4 +2.2 % pairs, base1-test +0.1 %).
+    if (cp.sliver && cp.part >= 0) {
+      visitPart(cell, static_cast<uint32_t>(cp.part), 0, reach);
+    } else {
+      visit(cell, 0, reach);
+    }
+  }
+
   /// Stabbing tests (portals and targets) one run may make (0: no limit). Past it the search
   /// stops testing: every branch it has not explored yet is answered with every piece, with
   /// every flag, in every cell the branch might reach (its reach set), which is conservative —
@@ -682,6 +761,14 @@ class PatchSearch {
 
   /// Marks every piece of `cell` (but the source's) with every flag it could get.
   void markCell(uint32_t cell) {
+    if (outside_) {
+      if (!outsideTargets_.contains(cell)) return;
+      for (uint32_t i : outside_->in[cell]) {
+        const CellPatch& t = outside_->pieces[i].piece;
+        if (t.patch != source_) mark(t.patch, attainable(t));
+      }
+      return;
+    }
     if (fullyMarked_.contains(cell)) return;
     fullyMarked_.insert(cell);
     markedCells_.push_back(cell);
@@ -701,6 +788,21 @@ class PatchSearch {
   void markWhatTheSequenceMayMeet(uint32_t cell) {
     if (!budgetAnswerByPlanes_) {
       markCell(cell);
+      return;
+    }
+    if (outside_) {
+      // From a sliver or a fragment: the few pieces it looks for, one by one. (S's own are
+      // skipped: marking S would saturate its pieces a second time.)
+      if (!outsideTargets_.contains(cell)) return;
+      const LaterPlanes planes{stabber_.laterPlanes()};
+      for (uint32_t i : outside_->in[cell]) {
+        const CellPatch& t = outside_->pieces[i].piece;
+        const uint8_t f = attainable(t);
+        uint64_t mask = planes.all();
+        if (t.patch != source_ && (flags_[t.patch] & f) != f &&
+            planes.keep(t.ball.center, t.ball.radius, t.piece.vertices, mask))
+          mark(t.patch, f);
+      }
       return;
     }
     if (!unsaturated_.contains(cell)) return;
@@ -726,6 +828,24 @@ class PatchSearch {
   void saturate(const Need& piece) {
     unsaturatedPieces_[piece.bit >> 6] &= ~(uint64_t{1} << (piece.bit & 63));
     decrement(piece.cell);
+  }
+
+  /// The cells where the current outside search of S looks (outsideTargets_): those of the
+  /// pieces it looks for (outside_) of patches S can face and has not seen front yet. False
+  /// when there are none.
+  bool gatherOutsideTargets(uint32_t s) {
+    outsideTargets_.clear();
+    const ConvexPolygon& sp = scene_.patches[s].polygon;
+    bool any = false;
+    for (const PatchPlacement::CellPiece& t : outside_->pieces) {
+      const uint32_t p = t.piece.patch;
+      if (p == s || (flags_[p] & kSeenFront) || outsideTargets_.contains(t.cell) ||
+          !canFace(sp, scene_.patches[p].polygon, tol_.length()))
+        continue;
+      outsideTargets_.insert(t.cell);
+      any = true;
+    }
+    return any;
   }
 
   /// Sets the bits of every piece of `cell` again (after a run).
@@ -807,6 +927,25 @@ class PatchSearch {
     }
   }
 
+  /// Tests the pieces the current search looks for in `cell` (only leaf `part` of it when
+  /// part >= 0): its own pieces, or in an outside search (outside_) the slivers or fragments.
+  void testTargets(uint32_t cell, int32_t part) {
+    if (outside_) {
+      if (!outsideTargets_.contains(cell)) return;
+      for (uint32_t i : outside_->in[cell]) {
+        const CellPatch& t = outside_->pieces[i].piece;
+        if (part < 0 || t.part == part) testTarget(t);
+      }
+      return;
+    }
+    if (part < 0) {
+      for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
+    } else {
+      for (uint32_t k : partPieces_[cell][static_cast<size_t>(part)])
+        testTarget(cellPatches_[cell][k]);
+    }
+  }
+
   /// `reach`: the cells this branch may still reach (null: all).
   void visit(uint32_t cell, size_t depth, const CellSet* reach) {
     checkDeadline();
@@ -814,7 +953,7 @@ class PatchSearch {
     if (exhausted()) {
       markWhatTheSequenceMayMeet(cell);
     } else {
-      for (const CellPatch& t : cellPatches_[cell]) testTarget(t);
+      testTargets(cell, -1);
     }
     for (uint32_t pid : sub_.cells[cell].portals) leaveThrough(cell, pid, depth, reach);
     onPath_[cell] = 0;
@@ -834,7 +973,8 @@ class PatchSearch {
     CellSet& nextReach = stack_[depth];
     if (reach) nextReach.assignIntersection(*reach, through);
     const CellSet& r = reach ? nextReach : through;
-    if (!r.intersects(unsaturated_)) return;  // nothing new can be seen that way
+    // Nothing new can be seen that way (an outside search looks only where its targets are).
+    if (!r.intersects(outside_ ? outsideTargets_ : unsaturated_)) return;
     // Over the budget the portal is still tested (one test per branch left on the path: a
     // bounded number), and a branch that passes is answered without exploring it: the pieces
     // a line through it may meet in every cell it might reach.
@@ -872,7 +1012,7 @@ class PatchSearch {
       return;
     }
     partOnPath_[part] = 1;
-    for (uint32_t k : partPieces_[cell][part]) testTarget(cellPatches_[cell][k]);
+    testTargets(cell, static_cast<int32_t>(part));
     const CellPart& leaf = c.parts[part];
     for (uint32_t pid : leaf.portals) leaveThrough(cell, pid, depth, reach);
     for (uint32_t ip : leaf.innerPortals) {
@@ -929,6 +1069,22 @@ class PatchSearch {
   bool overBudget_ = false;
   CellSet fullyMarked_;                // cells markCell has done in this run
   std::vector<uint32_t> markedCells_;  // the same, listed (to clear them)
+  const Scene& scene_;
+  /// PatchPlacement::slivers or ::fragments, indexed by cell and by patch.
+  struct OutsidePieces {
+    OutsidePieces(const std::vector<PatchPlacement::CellPiece>& all, size_t cells, size_t patches)
+        : pieces(all), in(cells), of(patches) {
+      for (uint32_t i = 0; i < all.size(); ++i) {
+        in[all[i].cell].push_back(i);
+        of[all[i].piece.patch].push_back(i);
+      }
+    }
+    const std::vector<PatchPlacement::CellPiece>& pieces;
+    std::vector<std::vector<uint32_t>> in, of;
+  };
+  const OutsidePieces slivers_, fragments_;
+  const OutsidePieces* outside_ = nullptr;  // what the current outside search looks for
+  CellSet outsideTargets_;                  // and the cells where (gatherOutsideTargets)
   Tolerance tol_;
 };
 
@@ -942,6 +1098,8 @@ std::vector<std::vector<uint32_t>> frontCellsOfPatches(const Scene& scene, const
     for (const auto& [cell, piece] : placed.placements[p]) {
       const CellPatch& cp = placed.cellPatches[cell][piece];
       // As PatchSearch::run starts from, and as it flags kSeenFront: the front's cells only.
+      // (Not the beyond-air slivers, which are not placements: light through a gap the width
+      // of the contact distance carries no measurable power.)
       if (cp.facesIn || cp.interior) cells[p].push_back(cell);
     }
     std::sort(cells[p].begin(), cells[p].end());
@@ -958,6 +1116,8 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
   const Tolerance tol = sub.tree.tol;
   const PatchPlacement placed = placePatches(scene, sub, tol, options.outsideSlivers);
   st.thinWallSlivers = placed.thinWallSlivers;
+  st.beyondAirSlivers = placed.slivers.size();
+  st.beyondAirFragments = placed.fragments.size();
   st.acrossPortalPieces = placed.acrossPortals;
   st.acrossThinSlabPieces = placed.acrossThinSlabs;
   const PortalReach reach = cells.reach();
@@ -969,7 +1129,7 @@ std::vector<PatchSearchResult> searchPatches(const Scene& scene, const Subdivisi
   parallelFor(
       n, threads,
       [&] {
-        PatchSearch w(sub, placed, reach, cellReach, tol);
+        PatchSearch w(sub, placed, reach, cellReach, scene, tol);
         w.checkDeadline.deadline = options.deadline;
         w.setBudget(st.patchBudget);
         w.setBudgetAnswerByPlanes(options.patchBudgetAnswerByPlanes);

@@ -144,6 +144,8 @@ nlohmann::json visibilityStatsJson(const VisibilityStats& s) {
       {"pairs_hidden_by_one_blocker", s.pairsHiddenByOne},
       {"pairs_hidden_by_coplanar_blockers", s.pairsHiddenByWall},
       {"thin_wall_slivers", s.thinWallSlivers},
+      {"beyond_air_slivers", s.beyondAirSlivers},
+      {"beyond_air_fragments", s.beyondAirFragments},
       {"pieces_across_openings", s.acrossPortalPieces},
       {"pieces_across_thin_slabs", s.acrossThinSlabPieces},
       {"coplanar_graze_pairs", s.coplanarGrazePairs},

@@ -78,6 +78,11 @@ struct VisibilityStats {
   /// Pieces of patches placed in a cell across a one-sided wall they end against (patch_search.cpp:
   /// rays may cross such a wall within the contact tolerance of their start).
   uint64_t thinWallSlivers = 0;
+  /// Of those, the ones in the level's outside (a merged cell's leaves), searched only for the
+  /// fragments: the parts of fronts that look beyond the air (Scene::beyondAirBounds) cut from
+  /// their pieces, which are searched only for those slivers (patch_search.cpp).
+  uint64_t beyondAirSlivers = 0;
+  uint64_t beyondAirFragments = 0;
   /// Pieces of patches placed in a cell across an opening that lies along the patch and overlaps
   /// it (patch_search.cpp: a patch the BSP moved onto a tilted plane, its front looking out
   /// through that opening).

@@ -69,6 +69,59 @@ TEST(HiddenFaces, BoxOnSlabLosesItsBottomAndTheSlabTopPartlyHiddenIsKept) {
   EXPECT_NEAR(topArea, 16.0 - 1.0, 1e-6);  // the slab's top minus the box's footprint
 }
 
+TEST(HiddenFaces, FrontBeyondAirIsASolidsInsideAmongSolids) {
+  // The box on the slab again: the slab's top, kept whole, looks partly into the box (a closed
+  // solid); nothing else looks out of the air. Cut (cutPartly), its pieces in air do not.
+  const Scene scene = boxes({{{0, 0, -1}, {4, 4, 0}}, {{1, 1, 0}, {2, 2, 1}}});
+  HiddenFaceReport r;
+  const Scene out = removeHiddenFaces(scene, {}, &r);
+  EXPECT_FALSE(r.shells);
+  ASSERT_EQ(out.beyondAirBounds.size(), out.patches.size());
+  for (size_t i = 0; i < out.patches.size(); ++i) {
+    const ConvexPolygon& p = out.patches[i].polygon;
+    const bool slabTop = p.plane.normal.z > 0.5 && std::abs(p.vertices[0].z) < 1e-9;
+    EXPECT_EQ(out.beyondAirBounds[i].empty(), !slabTop) << i;
+    if (slabTop) {  // the part under the box
+      EXPECT_NEAR(out.beyondAirBounds[i].lo.x, 1, 1e-6);
+      EXPECT_NEAR(out.beyondAirBounds[i].hi.x, 2, 1e-6);
+      EXPECT_NEAR(out.beyondAirBounds[i].lo.y, 1, 1e-6);
+      EXPECT_NEAR(out.beyondAirBounds[i].hi.y, 2, 1e-6);
+    }
+  }
+  EXPECT_EQ(r.frontBeyondAir, 1u);
+  HiddenFaceOptions cut;
+  cut.cutPartly = true;
+  const Scene pieces = removeHiddenFaces(scene, cut);
+  ASSERT_EQ(pieces.beyondAirBounds.size(), pieces.patches.size());
+  for (const Aabb& box : pieces.beyondAirBounds) EXPECT_TRUE(box.empty());
+}
+
+TEST(HiddenFaces, FrontBeyondAirIsTheOutsideOnALevelOfShells) {
+  // A room of six faces looking in (a 2.5D sector: air inside, winding number -1) and a small
+  // closed box in the void beside it: the box's faces look into the void (0), which no air
+  // reaches on such a level, though it is air on a level of solids.
+  Scene scene;
+  const uint32_t m = scene.addMaterial({});
+  SceneBuilder b(scene, Tolerance::forBounds(Aabb{{-10, -10, -10}, {10, 10, 10}}));
+  b.addAxisRect(2, true, {0, 0, 0}, {10, 10, 0}, m);
+  b.addAxisRect(2, false, {0, 0, 4}, {10, 10, 4}, m);
+  b.addAxisRect(0, true, {0, 0, 0}, {0, 10, 4}, m);
+  b.addAxisRect(0, false, {10, 0, 0}, {10, 10, 4}, m);
+  b.addAxisRect(1, true, {0, 0, 0}, {10, 0, 4}, m);
+  b.addAxisRect(1, false, {0, 10, 0}, {10, 10, 4}, m);
+  const size_t roomFaces = scene.patches.size();
+  b.addBox({2, -5, 1}, {4, -3, 3}, m);
+  ASSERT_EQ(scene.patches.size(), roomFaces + 6);
+  HiddenFaceReport r;
+  const Scene out = removeHiddenFaces(scene, {}, &r);
+  EXPECT_TRUE(r.shells);
+  ASSERT_EQ(out.patches.size(), scene.patches.size());
+  ASSERT_EQ(out.beyondAirBounds.size(), out.patches.size());
+  for (size_t i = 0; i < out.patches.size(); ++i)
+    EXPECT_EQ(out.beyondAirBounds[i].empty(), i < roomFaces) << i;
+  EXPECT_EQ(r.frontBeyondAir, 6u);
+}
+
 TEST(HiddenFaces, OverlappingBrushesLoseTheFacesInsideEachOther) {
   // Two brushes overlapping in x in [1, 2]: the first's +x face lies inside the second, the
   // second's -x face inside the first; both are hidden. Their other faces are partly inside.
