@@ -96,12 +96,13 @@ struct PropagationOptions {
   /// Merge cells before searching (visibility/convex_merge.h: neighbours whose union is convex,
   /// and the blind cells no patch faces into): conservative; off only to measure what it saves.
   bool mergeConvexCells = true;
-  /// Also place thin-wall slivers (patch_search.cpp) in the leaves of merged cells, the level's
-  /// outside: rays that leave a patch within the model tolerance of a one-sided wall it ends at,
-  /// cross it (the contact rule does not count that hit) and go on through the outside and in
-  /// through an opening. Off by default: on the sector levels, whose rooms all end at one-sided
-  /// walls with the outside behind, it lists 2.4-4.5 times the pairs (docs/BENCHMARKS.md) for a
-  /// pair or two that 10^6 rays at a contact distance of 1e-5 find, and none at 1e-6.
+  /// Also search the thin-wall slivers (patch_search.cpp) in the leaves of merged cells, the
+  /// level's outside, for everything: rays that leave a patch within the model tolerance of a
+  /// one-sided wall it ends at, cross it (the contact rule does not count that hit) and go on
+  /// through the outside and in through an opening. By default those slivers look only for the
+  /// parts of fronts that look out of the air (Scene::beyondAirBounds), what such a ray meets
+  /// first in a closed level; this option lists 2.4-4.5 times the pairs on the sector levels
+  /// (docs/BENCHMARKS.md), whose rooms all end at one-sided walls with the outside behind.
   bool outsideSlivers = false;
 };
 
