@@ -70,8 +70,7 @@ bool shellLevel(const std::vector<std::vector<Piece>>& pieces, const std::vector
 /// near open edges fall on the side of "beyond air" there: the flag only widens what `vis`
 /// searches for.
 std::vector<uint8_t> cellsBeyondAir(const std::vector<std::vector<Piece>>& pieces,
-                                    const std::vector<double>& wind) {
-  const bool shells = shellLevel(pieces, wind);
+                                    const std::vector<double>& wind, bool shells) {
   std::vector<uint8_t> out(pieces.size(), 0);
   for (size_t c = 0; c < pieces.size(); ++c)
     if (!pieces[c].empty()) out[c] = wind[c] >= (shells ? -0.5 : kSolidWindingNumber);
@@ -120,7 +119,8 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
     wind[c] = winding.at(sub.cells[c].shape.centroid());
     solid[c] = wind[c] >= kSolidWindingNumber;
   });
-  const std::vector<uint8_t> beyondAir = cellsBeyondAir(pieces, wind);
+  rep.shells = shellLevel(pieces, wind);
+  const std::vector<uint8_t> beyondAir = cellsBeyondAir(pieces, wind, rep.shells);
 
   // Per patch: its pieces in air, after the earlier same-facing patches on its plane in the same
   // cell took their overlap. `cut` marks a patch that lost anything.
@@ -209,7 +209,6 @@ Scene removeHiddenFaces(const Scene& scene, const HiddenFaceOptions& options,
   rep.frontBeyondAir =
       static_cast<size_t>(std::count_if(out.beyondAirBounds.begin(), out.beyondAirBounds.end(),
                                         [](const Aabb& b) { return !b.empty(); }));
-  rep.shells = shellLevel(pieces, wind);
   if (report) *report = rep;
   return out;
 }

@@ -113,6 +113,10 @@ struct Aabb {
     return lo.x <= o.hi.x + slack && o.lo.x <= hi.x + slack && lo.y <= o.hi.y + slack &&
            o.lo.y <= hi.y + slack && lo.z <= o.hi.z + slack && o.lo.z <= hi.z + slack;
   }
+  /// This box grown by `slack` on every side (an empty box stays empty).
+  Aabb grown(double slack) const {
+    return empty() ? *this : Aabb{lo - Vec3{slack, slack, slack}, hi + Vec3{slack, slack, slack}};
+  }
   Vec3 extent() const { return empty() ? Vec3{} : hi - lo; }
   Vec3 center() const { return (lo + hi) * 0.5; }
   double diagonal() const { return empty() ? 0.0 : length(hi - lo); }

@@ -84,10 +84,7 @@ std::vector<std::vector<uint32_t>> shadowingPatches(const Scene& scene, const To
   std::vector<Aabb> boxes(n);
   for (size_t i = 0; i < n; ++i) {
     const ConvexPolygon& poly = scene.patches[i].polygon;
-    boxes[i] = poly.bounds();
-    const double grow = maxGap(poly) + tol.planeOffset();
-    boxes[i].lo = boxes[i].lo - Vec3{grow, grow, grow};
-    boxes[i].hi = boxes[i].hi + Vec3{grow, grow, grow};
+    boxes[i] = poly.bounds().grown(maxGap(poly) + tol.planeOffset());
   }
   std::vector<std::vector<uint32_t>> shadowsOf(n);
   forEachOverlappingBoxPair(boxes, 0.0, [&](uint32_t a, uint32_t b) {

@@ -286,9 +286,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
             if (const std::optional<ConvexPolygon> close = nearWallPart(poly, *piece, listed[k]))
               if (!openingAlong(*close)) box.add(close->bounds());
         if (box.empty()) continue;
-        const double grow = tol.length();
-        piece = clipToBox(*piece,
-                          {box.lo - Vec3{grow, grow, grow}, box.hi + Vec3{grow, grow, grow}}, tol);
+        piece = clipToBox(*piece, box.grown(tol.length()), tol);
         if (!piece) continue;
       }
       CellPatch cp;
@@ -412,12 +410,11 @@ size_t placeAcrossCoplanarPortals(const Scene& scene, const Subdivision& sub, co
 /// sees nothing and it is listed with nothing, though its sightlines leave the slab within the
 /// tolerance (q3-oa_rpg3dm2: patch 3683, a bevel 5.6e-4 tall between a beam's two sloped faces,
 /// whose planes meet 2.2e-4 in front of it; `verify --unlisted-pairs` found a free segment from
-/// it). So a piece
-/// facing into a cell without portals whose depth along the piece's normal is within the slack
-/// (2 planeOffset) is also placed, as clipToCell keeps it, in every convex region (a cell, or a
-/// leaf of a merged cell) within the slack of it with part of that region in front of the
-/// patch, facing into it: the search from there sees what the patch's front sees beyond the
-/// slab. Extra pieces only let the searches see more. Returns the number of pieces placed.
+/// it). So a piece facing into a cell without portals whose depth along the piece's normal is
+/// within the slack (2 planeOffset) is also placed, as clipToCell keeps it, in every convex
+/// region (a cell, or a leaf of a merged cell) within the slack of it with part of that region in
+/// front of the patch, facing into it: the search from there sees what the patch's front sees
+/// beyond the slab. Extra pieces only let the searches see more. Returns the number placed.
 size_t placeAcrossThinSlabs(const Scene& scene, const Subdivision& sub, const Tolerance& tol,
                             PatchPlacement& out) {
   const double slack = 2 * tol.planeOffset();
@@ -499,7 +496,7 @@ void placeBeyondAirFragments(const Scene& scene, const Tolerance& tol, PatchPlac
   for (uint32_t t = 0; t < scene.beyondAirBounds.size() && t < out.placements.size(); ++t) {
     const Aabb& box = scene.beyondAirBounds[t];
     if (box.empty()) continue;
-    const Aabb grown{box.lo - Vec3{slack, slack, slack}, box.hi + Vec3{slack, slack, slack}};
+    const Aabb grown = box.grown(slack);
     for (auto [cell, k] : out.placements[t]) {
       const CellPatch& cp = out.cellPatches[cell][k];
       if (!cp.facesIn && !cp.interior) continue;
