@@ -371,5 +371,109 @@ TEST(ThinWallSlivers, BeyondAirSliversListAFaceLookingIntoTheOutside) {
     for (uint32_t t = s + 1; t < boxFirst; ++t) EXPECT_EQ(listed(g, s, t), listed(plain, s, t));
 }
 
+TEST(ThinWallSlivers, ALedgeOnAWallIsListedWithAFloorBuriedInTheSolidBehindIt) {
+  // q3-ctf_gate1 in small, a level of closed solids around a room of air x < 0. A wall brush
+  // [0, 2] x [0, 10] x [5, 10] stands on a block [0, 14] x [0, 10] x [-6, 5]; a slab's top, the
+  // floor z = -4.25, runs through the block and on into a second room x > 14, so its part under
+  // the block looks into the block's inside. A ledge sticks out of the wall's face W (x = 0) over
+  // the room; a ray leaving the ledge's underside S just short of W crosses W within the contact
+  // distance of its start, goes down through the wall and the block (their faces in contact
+  // removed by the hidden-face pass), and meets the floor's buried part from the front. The pair
+  // must be listed whatever cells the stop rule leaves: behind W a leaf of the merged outside, or
+  // a convex cell with patches inside it, where before only walls facing into the cell were
+  // crossed.
+  Scene soup;
+  SceneBuilder b(soup, Tolerance{40});
+  const uint32_t m = soup.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  b.addBox({0, 0, 5}, {2, 10, 10}, m);       // the wall brush; W is its face x = 0
+  b.addBox({-0.25, 4, 6.75}, {0, 6, 7}, m);  // the ledge; S is its bottom
+  b.addBox({0, 0, -6}, {14, 10, 5}, m);      // the block
+  b.addBox({0, 0, -8}, {20, 10, -4.25}, m);  // the slab; its top is the floor
+  b.addBox({2, 0, 5}, {14, 10, 10}, m);      // solid over the block beside the wall
+  b.addBox({-3, 7, 8}, {1, 8, 8.5}, m);      // a beam through W, left inside cells
+  b.addBox({-12, -2, -8}, {22, 0, 12}, m);   // the rooms' walls, floors and roofs
+  b.addBox({-12, 10, -8}, {22, 12, 12}, m);
+  b.addBox({-12, 0, -8}, {-10, 10, 12}, m);
+  b.addBox({20, 0, -8}, {22, 10, 12}, m);
+  b.addBox({-10, 0, -8}, {0, 10, 0}, m);
+  b.addBox({-10, 0, 10}, {20, 10, 12}, m);
+  const Scene scene = removeHiddenFaces(soup);
+  // The patch through `point` facing along `normal`.
+  auto find = [&](const Vec3& point, const Vec3& normal) {
+    for (uint32_t i = 0; i < scene.patches.size(); ++i) {
+      const ConvexPolygon& p = scene.patches[i].polygon;
+      if (dot(p.plane.normal, normal) > 0.99 && p.contains(point, Tolerance{40})) return i;
+    }
+    return UINT32_MAX;
+  };
+  const uint32_t s = find({-0.1, 5, 6.75}, {0, 0, -1});
+  const uint32_t w = find({0, 2, 7}, {-1, 0, 0});
+  const uint32_t floor = find({17, 5, -4.25}, {0, 0, 1});
+  ASSERT_NE(s, UINT32_MAX);
+  ASSERT_NE(w, UINT32_MAX);
+  ASSERT_NE(floor, UINT32_MAX);
+
+  const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
+  const Vec3 origin{-0.3 * contact, 5, 6.75};
+  const Vec3 dir = normalize(Vec3{0.5, 0.1, -1});
+  expectContactWitness(scene, origin, dir, s, w, floor);
+
+  int convexWithInsideBehindW = 0;
+  for (const double coverage : {0.0, 0.1, 0.2, 0.3}) {
+    BspOptions bsp;
+    bsp.minCoverage = coverage;
+    const Subdivision sub = buildSubdivision(scene, bsp);
+    for (const Cell& cell : sub.cells)
+      if (cell.parts.empty() && !cell.interiorPatches.empty() &&
+          cell.shape.contains(Vec3{0.5, 5, 6}, Tolerance{40}))
+        ++convexWithInsideBehindW;
+    const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
+    EXPECT_TRUE(listed(g, s, floor)) << "min coverage " << coverage;
+  }
+  EXPECT_GT(convexWithInsideBehindW, 0);  // the case this test is for
+}
+
+TEST(ThinWallSlivers, AnOpeningInTheFloorsOwnPlaneDoesNotStandInForTheSliver) {
+  // q3-oacmpdm1 in small, a level of inward faces: a pit [0, 6] x [0, 20] x [-5, 10], and in it
+  // a ledge [0, 6] x [0, 6] at z = 0 with air under it, S, the floor of a room A; A's wall W
+  // (y = 6, from S up to z = 5.5) faces away from A, into the room B beyond, so A and B meet only
+  // over W; a step at B's far end is as high as S. A ray leaving S just short of W crosses W from
+  // behind within the contact distance of its start and meets B's far wall. The cut in S's plane
+  // across B is an opening of B's cell running along the part of S at W, into the cell under it
+  // where S is placed (facing out), but no sightline from S crosses an opening in S's own plane:
+  // it must not stand in for S's sliver beyond W (it did: 1 of 10^6 `verify --contact 1e-5` rays).
+  Scene scene;
+  SceneBuilder b(scene, Tolerance{30});
+  const uint32_t m = scene.addMaterial({"grey", {0.5, 0.5, 0.5}, {}});
+  const auto s = static_cast<uint32_t>(scene.patches.size());
+  b.addAxisRect(2, true, {0, 0, 0}, {6, 6, 0}, m);      // S
+  b.addAxisRect(2, true, {0, 0, -5}, {6, 20, -5}, m);   // the pit's floor
+  b.addAxisRect(2, false, {0, 0, 10}, {6, 20, 10}, m);  // the roof
+  b.addAxisRect(0, true, {0, 0, -5}, {0, 20, 10}, m);   // the sides
+  b.addAxisRect(0, false, {6, 0, -5}, {6, 20, 10}, m);
+  b.addAxisRect(1, true, {0, 0, -5}, {6, 0, 10}, m);  // the back wall
+  const auto w = static_cast<uint32_t>(scene.patches.size());
+  b.addAxisRect(1, true, {0, 6, 0}, {6, 6, 5.5}, m);    // W
+  b.addAxisRect(2, true, {0, 16, 0}, {6, 20, 0}, m);    // a step at B's far end, level
+  b.addAxisRect(1, false, {0, 16, -5}, {6, 16, 0}, m);  // with S: a plane cutting B
+  const auto far = static_cast<uint32_t>(scene.patches.size());
+  b.addAxisRect(1, false, {0, 20, 0}, {6, 20, 10}, m);  // B's far wall
+
+  const double contact = kRelativeModelEpsilon * scene.bounds().diagonal();
+  const Vec3 origin{3, 6 - 0.3 * contact, 0};
+  const Vec3 dir = normalize(Vec3{0.1, 1, 0.3});
+  bool wFront = true;
+  expectContactWitness(scene, origin, dir, s, w, far, &wFront);
+  EXPECT_FALSE(wFront);
+
+  for (const double coverage : {0.0, 0.1, 0.2, 0.3}) {
+    BspOptions bsp;
+    bsp.minCoverage = coverage;
+    const Subdivision sub = buildSubdivision(scene, bsp);
+    const VisibilityGraph g = computeVisibility(scene, sub, PropagationOptions{});
+    EXPECT_TRUE(listed(g, s, far)) << "min coverage " << coverage;
+  }
+}
+
 }  // namespace
 }  // namespace gv
