@@ -97,6 +97,10 @@ struct PatchPlacement {
   struct CellPiece {
     uint32_t cell = 0;
     CellPatch piece;
+    /// For a sliver, the planes of the walls a ray leaving it crosses within the slack of its
+    /// start, each facing the cell: such a ray goes on in front of the wall it crossed, so only
+    /// pieces with a part there can be its next hit (mayMeetAcross).
+    std::vector<Plane> crossed;
   };
   std::vector<CellPiece> slivers, fragments;
 };
@@ -271,6 +275,16 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
         ++placed;
         return cp;
       };
+      // The walls a ray from the piece crosses near its start, facing B (CellPiece::crossed).
+      auto crossedWalls = [&] {
+        std::vector<Plane> planes;
+        for (size_t k : mine)
+          if (nearWallPart(poly, *piece, listed[k])) {
+            const Plane& w = scene.patches[listed[k].patch].polygon.plane;
+            planes.push_back(listed[k].facesIn ? w : w.flipped());
+          }
+        return planes;
+      };
       if (awayForFragmentsOnly) {
         // Only the box of the parts near such walls, as below: these searches are many.
         Aabb box;
@@ -280,7 +294,7 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
               box.add(close->bounds());
         if (!box.empty())
           if (std::optional<ConvexPolygon> strip = clipToBox(*piece, box.grown(tol.length()), tol))
-            out.slivers.push_back({c, sliver(std::move(*strip))});
+            out.slivers.push_back({c, sliver(std::move(*strip)), crossedWalls()});
         if (!air) continue;  // the slivers below are for air
       }
       const bool crosses = !facingInOnly && std::any_of(walls.begin(), walls.end(), [&](size_t k) {
@@ -336,13 +350,13 @@ size_t placeThinWallSlivers(const Scene& scene, const Subdivision& sub, const To
         piece = clipToBox(*piece, box.grown(tol.length()), tol);
         if (!piece) continue;
       }
-      CellPatch cp = sliver(std::move(*piece));
       if (part >= 0 && !outside) {
-        out.slivers.push_back({c, std::move(cp)});
+        std::vector<Plane> planes = crossedWalls();
+        out.slivers.push_back({c, sliver(std::move(*piece)), std::move(planes)});
         continue;
       }
       out.placements[p].emplace_back(c, out.cellPatches[c].size());
-      out.cellPatches[c].push_back(std::move(cp));
+      out.cellPatches[c].push_back(sliver(std::move(*piece)));
     }
   };
   for (uint32_t c = 0; c < sub.cells.size(); ++c) {
@@ -697,8 +711,12 @@ class PatchSearch {
       if (mine.of[s].empty()) continue;
       outside_ = fromSlivers ? &fragments_ : &slivers_;
       if (gatherOutsideTargets(s))
-        for (uint32_t i : mine.of[s]) searchFrom(mine.pieces[i].cell, mine.pieces[i].piece, result);
+        for (uint32_t i : mine.of[s]) {
+          outsideSource_ = &mine.pieces[i];
+          searchFrom(mine.pieces[i].cell, mine.pieces[i].piece, result);
+        }
       outside_ = nullptr;
+      outsideSource_ = nullptr;
     }
     result.overBudget = overBudget_;
     for (uint32_t c : markedCells_) fullyMarked_.erase(c);
@@ -801,7 +819,7 @@ class PatchSearch {
       if (!outsideTargets_.contains(cell)) return;
       for (uint32_t i : outside_->in[cell]) {
         const CellPatch& t = outside_->pieces[i].piece;
-        if (t.patch != source_) mark(t.patch, attainable(t));
+        if (t.patch != source_ && mayMeetAcross(outside_->pieces[i])) mark(t.patch, attainable(t));
       }
       return;
     }
@@ -836,6 +854,7 @@ class PatchSearch {
         const uint8_t f = attainable(t);
         uint64_t mask = planes.all();
         if (t.patch != source_ && (flags_[t.patch] & f) != f &&
+            mayMeetAcross(outside_->pieces[i]) &&
             planes.keep(t.ball.center, t.ball.radius, t.piece.vertices, mask))
           mark(t.patch, f);
       }
@@ -882,6 +901,28 @@ class PatchSearch {
       any = true;
     }
     return any;
+  }
+
+  /// In an outside search, whether `target` may be met by a ray between it and the piece the
+  /// search is from (outsideSource_). One of the pair is a sliver of a patch S, and such a ray
+  /// leaves S's front and crosses one of the sliver's walls (CellPiece::crossed) within the
+  /// slack of its start: it goes on in front of both planes, from near where they meet, so the
+  /// other piece has a part in front of both.
+  bool mayMeetAcross(const PatchPlacement::CellPiece& target) const {
+    const PatchPlacement::CellPiece& from = *outsideSource_;
+    const bool fromSliver = !from.crossed.empty();
+    const PatchPlacement::CellPiece& sliver = fromSliver ? from : target;
+    if (sliver.crossed.empty()) return true;
+    const double slack = tol_.planeOffset();
+    auto grown = [&](const Plane& h) { return Plane{h.normal, h.offset - slack}; };
+    const std::optional<ConvexPolygon> ahead =
+        clipToFront((fromSliver ? target : from).piece.piece,
+                    grown(scene_.patches[sliver.piece.patch].polygon.plane), tol_);
+    if (!ahead) return false;
+    return std::any_of(sliver.crossed.begin(), sliver.crossed.end(), [&](const Plane& w) {
+      return std::any_of(ahead->vertices.begin(), ahead->vertices.end(),
+                         [&](const Vec3& v) { return w.distance(v) > -slack; });
+    });
   }
 
   /// Sets the bits of every piece of `cell` again (after a run).
@@ -970,7 +1011,7 @@ class PatchSearch {
       if (!outsideTargets_.contains(cell)) return;
       for (uint32_t i : outside_->in[cell]) {
         const CellPatch& t = outside_->pieces[i].piece;
-        if (part < 0 || t.part == part) testTarget(t);
+        if ((part < 0 || t.part == part) && mayMeetAcross(outside_->pieces[i])) testTarget(t);
       }
       return;
     }
@@ -1120,6 +1161,7 @@ class PatchSearch {
   };
   const OutsidePieces slivers_, fragments_;
   const OutsidePieces* outside_ = nullptr;  // what the current outside search looks for
+  const PatchPlacement::CellPiece* outsideSource_ = nullptr;  // and the piece it is from
   CellSet outsideTargets_;                  // and the cells where (gatherOutsideTargets)
   Tolerance tol_;
 };
