@@ -1162,7 +1162,7 @@ class PatchSearch {
   const OutsidePieces slivers_, fragments_;
   const OutsidePieces* outside_ = nullptr;  // what the current outside search looks for
   const PatchPlacement::CellPiece* outsideSource_ = nullptr;  // and the piece it is from
-  CellSet outsideTargets_;                  // and the cells where (gatherOutsideTargets)
+  CellSet outsideTargets_;  // and the cells where (gatherOutsideTargets)
   Tolerance tol_;
 };
 
